@@ -1,0 +1,40 @@
+#pragma once
+// External forces. A load may depend on the configuration (a muscle fibre pulls along its
+// current direction); its derivative then enters the tangent.
+#include <string>
+
+#include "fem/assembly/sparse_matrix.hpp"
+#include "fem/types.hpp"
+
+namespace tongue::fem {
+
+class ForceContribution {
+ public:
+  virtual ~ForceContribution() = default;
+  virtual std::string name() const = 0;
+  // Adds load_factor * f_ext(u) to force (all dofs, [N]). When stiffness is given, adds the
+  // tangent of the residual's load part, -load_factor * d f_ext / du, over the free dofs.
+  virtual void add(const Vector& u, double load_factor, Vector& force,
+                   SymmetricMatrix* stiffness) const = 0;
+  // True when f_ext does not depend on u (its tangent is zero).
+  virtual bool is_dead_load() const { return false; }
+};
+
+// A dead load: a fixed vector of nodal forces (gravity, point loads, tractions on the reference
+// surface).
+class ConstantForce : public ForceContribution {
+ public:
+  ConstantForce(std::string name, Vector force) : name_(std::move(name)), force_(std::move(force)) {}
+  std::string name() const override { return name_; }
+  void add(const Vector&, double load_factor, Vector& force, SymmetricMatrix*) const override {
+    force += load_factor * force_;
+  }
+  bool is_dead_load() const override { return true; }
+  const Vector& force() const { return force_; }
+
+ private:
+  std::string name_;
+  Vector force_;
+};
+
+}  // namespace tongue::fem

@@ -1,0 +1,69 @@
+#pragma once
+// The discretized solid: mesh, material, element formulation, density and Dirichlet
+// constraints, with everything that depends only on the reference configuration computed once
+// (element geometry, sparsity pattern and scatter map). It evaluates internal forces, tangent
+// stiffness, mass and body forces; it knows nothing of time stepping or of where loads come from.
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "fem/assembly/dof_map.hpp"
+#include "fem/assembly/sparse_matrix.hpp"
+#include "fem/element/hex8_element.hpp"
+#include "fem/material/material.hpp"
+#include "fem/mesh/mesh.hpp"
+
+namespace tongue::fem {
+
+struct AssemblyStatus {
+  bool ok = true;
+  int inverted_element = -1;  // first element found with det F <= 0, when !ok
+  double min_J = 0.0;         // smallest det F over all Gauss points
+};
+
+class SolidModel {
+ public:
+  SolidModel(Mesh mesh, std::shared_ptr<const Material> material, Formulation formulation,
+             double density, const std::vector<PrescribedDof>& prescribed,
+             const std::vector<std::pair<int, int>>& extra_node_pairs = {});
+
+  const Mesh& mesh() const { return mesh_; }
+  const Material& material() const { return *material_; }
+  Formulation formulation() const { return formulation_; }
+  double density() const { return density_; }
+  const DofMap& dofs() const { return dofs_; }
+  std::shared_ptr<const SparsityPattern> pattern() const { return pattern_; }
+  int num_dofs() const { return dofs_.num_dofs(); }
+
+  // Rest positions flattened as 3 n + c.
+  const Vector& rest_positions() const { return rest_positions_; }
+
+  // Internal force f_int(u) [N] over all dofs (reactions appear at prescribed dofs) and, when
+  // stiffness is given, the tangent d f_int / du over the free dofs. u is the full displacement.
+  AssemblyStatus assemble(const Vector& u, Vector& internal_force, SymmetricMatrix* stiffness,
+                          double* strain_energy = nullptr) const;
+
+  // Mass matrix over the free dofs [kg]: consistent, or lumped by row sums.
+  SymmetricMatrix mass_matrix(bool lumped) const;
+  // Body force of a uniform acceleration field (e.g. gravity) [N]: rho g int N_a dV.
+  Vector body_force(const Vec3& acceleration) const;
+  double total_mass() const;
+  double reference_volume() const;
+  // Current volume sum over elements of int J dV [m^3] at displacement u.
+  double current_volume(const Vector& u) const;
+
+ private:
+  hex8::ElementCoords element_coords(int e, const Vector& positions) const;
+
+  Mesh mesh_;
+  std::shared_ptr<const Material> material_;
+  Formulation formulation_;
+  double density_;
+  DofMap dofs_;
+  Vector rest_positions_;
+  std::vector<ElementGeometry> geometry_;
+  std::shared_ptr<const SparsityPattern> pattern_;
+  std::vector<std::array<int, 24 * 24>> element_scatter_;
+};
+
+}  // namespace tongue::fem

@@ -1,0 +1,21 @@
+#include "fem/integrator/mechanical_system.hpp"
+
+namespace tongue::fem {
+
+AssemblyStatus MechanicalSystem::residual(const Vector& u, double load_factor, Vector& r,
+                                          SymmetricMatrix* stiffness) const {
+  const AssemblyStatus status = solid_->assemble(u, r, stiffness);
+  if (!status.ok) return status;
+  Vector f_ext = Vector::Zero(r.size());
+  for (const auto& load : loads_) load->add(u, load_factor, f_ext, stiffness);
+  r -= f_ext;
+  return status;
+}
+
+Vector MechanicalSystem::external_force(const Vector& u) const {
+  Vector f_ext = Vector::Zero(solid_->num_dofs());
+  for (const auto& load : loads_) load->add(u, 1.0, f_ext, nullptr);
+  return f_ext;
+}
+
+}  // namespace tongue::fem

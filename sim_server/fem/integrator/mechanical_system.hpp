@@ -1,0 +1,32 @@
+#pragma once
+// A solid with the loads that act on it: the residual r(u) = f_int(u) - lambda f_ext(u) that both
+// the static and the dynamic solvers drive to zero.
+#include <memory>
+#include <vector>
+
+#include "fem/assembly/loads.hpp"
+#include "fem/assembly/solid_model.hpp"
+
+namespace tongue::fem {
+
+class MechanicalSystem {
+ public:
+  explicit MechanicalSystem(std::shared_ptr<const SolidModel> solid) : solid_(std::move(solid)) {}
+
+  void add_load(std::shared_ptr<const ForceContribution> load) { loads_.push_back(std::move(load)); }
+  const std::vector<std::shared_ptr<const ForceContribution>>& loads() const { return loads_; }
+  const SolidModel& solid() const { return *solid_; }
+
+  // r = f_int(u) - load_factor f_ext(u) over all dofs (the entries at prescribed dofs are the
+  // negated reactions); when stiffness is given, dr/du over the free dofs.
+  AssemblyStatus residual(const Vector& u, double load_factor, Vector& r,
+                          SymmetricMatrix* stiffness) const;
+  // f_ext(u) over all dofs.
+  Vector external_force(const Vector& u) const;
+
+ private:
+  std::shared_ptr<const SolidModel> solid_;
+  std::vector<std::shared_ptr<const ForceContribution>> loads_;
+};
+
+}  // namespace tongue::fem

@@ -1,0 +1,157 @@
+#include "fem/integrator/newmark_integrator.hpp"
+
+#include <chrono>
+#include <sstream>
+#include <stdexcept>
+
+namespace tongue::fem {
+
+// One Newmark step as a nonlinear problem in the free displacements at t + dt.
+class NewmarkIntegrator::StepProblem : public NonlinearProblem {
+ public:
+  StepProblem(const NewmarkIntegrator& integrator, double dt)
+      : in_(integrator),
+        dofs_(integrator.system_.solid().dofs()),
+        dt_(dt),
+        c0_(1.0 / (integrator.settings_.newmark.beta * dt * dt)),
+        c1_(integrator.settings_.newmark.gamma / (integrator.settings_.newmark.beta * dt)),
+        u_n_(dofs_.gather_free(integrator.u_)),
+        v_n_(dofs_.gather_free(integrator.v_)),
+        a_n_(dofs_.gather_free(integrator.a_)),
+        u_full_(integrator.u_) {}
+
+  std::shared_ptr<const SparsityPattern> pattern() const override { return in_.mass_.shared_pattern(); }
+  bool residual(const Vector& x, Vector& r) override { return evaluate(x, r, nullptr); }
+  bool residual_and_tangent(const Vector& x, Vector& r, SymmetricMatrix& K) override {
+    if (!evaluate(x, r, &K)) return false;
+    // d r / d u_{n+1} = K_T + c0 M + c1 C
+    K.scale_and_add(1.0, c0_, in_.mass_);
+    if (in_.damping_) K.scale_and_add(1.0, c1_, *in_.damping_);
+    return true;
+  }
+
+  Vector acceleration(const Vector& x) const {
+    const double beta = in_.settings_.newmark.beta;
+    return c0_ * (x - u_n_ - dt_ * v_n_) - (0.5 / beta - 1.0) * a_n_;
+  }
+  Vector velocity(const Vector& a) const {
+    const double gamma = in_.settings_.newmark.gamma;
+    return v_n_ + dt_ * ((1.0 - gamma) * a_n_ + gamma * a);
+  }
+  const Vector& full(const Vector& x) {
+    dofs_.scatter_free(x, u_full_);
+    return u_full_;
+  }
+
+ private:
+  bool evaluate(const Vector& x, Vector& r, SymmetricMatrix* K) {
+    Vector r_full;
+    if (!in_.system_.residual(full(x), 1.0, r_full, K).ok) return false;
+    const Vector a = acceleration(x);
+    r = dofs_.gather_free(r_full) + in_.mass_.multiply(a);
+    if (in_.damping_) r += in_.damping_->multiply(velocity(a));
+    return true;
+  }
+
+  const NewmarkIntegrator& in_;
+  const DofMap& dofs_;
+  double dt_, c0_, c1_;
+  Vector u_n_, v_n_, a_n_;
+  Vector u_full_;
+};
+
+NewmarkIntegrator::NewmarkIntegrator(const MechanicalSystem& system, DynamicSettings settings)
+    : system_(system),
+      settings_(settings),
+      mass_(system.solid().mass_matrix(settings.lumped_mass)),
+      newton_(system.solid().pattern(), settings.newton) {
+  const NewmarkParameters& p = settings_.newmark;
+  if (!(p.beta > 0.0) || !(p.gamma >= 0.5)) {
+    throw std::invalid_argument("Newmark needs beta > 0 and gamma >= 1/2 (implicit and stable)");
+  }
+  initialize(Vector::Zero(system.solid().num_dofs()), Vector::Zero(system.solid().num_dofs()));
+}
+
+NewmarkIntegrator::~NewmarkIntegrator() = default;
+
+void NewmarkIntegrator::initialize(const Vector& u0, const Vector& v0, double t0) {
+  const DofMap& dofs = system_.solid().dofs();
+  u_ = u0;
+  v_ = v0;
+  for (int dof : dofs.prescribed_dofs()) {
+    u_[dof] = dofs.prescribed_values()[dof];
+    v_[dof] = 0.0;
+  }
+  t_ = t0;
+  Vector r_full;
+  const RayleighDamping& d = settings_.damping;
+  SymmetricMatrix K0(system_.solid().pattern());
+  if (!system_.residual(u_, 1.0, r_full, d.stiffness_coefficient != 0.0 ? &K0 : nullptr).ok) {
+    throw std::runtime_error("initial state has an inverted element");
+  }
+  damping_.reset();
+  if (d.active()) {
+    damping_.emplace(system_.solid().pattern());
+    damping_->scale_and_add(0.0, d.mass_coefficient, mass_);
+    if (d.stiffness_coefficient != 0.0) damping_->scale_and_add(1.0, d.stiffness_coefficient, K0);
+  }
+  // M a0 = f_ext - f_int - C v0 over the free dofs.
+  Vector rhs = -dofs.gather_free(r_full);
+  if (damping_) rhs -= damping_->multiply(dofs.gather_free(v_));
+  CholmodSolver mass_solver(mass_.shared_pattern());
+  if (!mass_solver.factorize(mass_).ok) throw std::runtime_error("mass matrix is singular");
+  a_ = Vector::Zero(u_.size());
+  dofs.scatter_free(mass_solver.solve(rhs), a_);
+  newton_.invalidate_factor();
+}
+
+StepReport NewmarkIntegrator::step(double dt) {
+  const auto start = std::chrono::steady_clock::now();
+  StepReport report;
+  report.dt = dt;
+  report.substeps = 0;
+  report.converged = advance(dt, report, 0);
+  report.time = t_;
+  report.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
+}
+
+bool NewmarkIntegrator::advance(double dt, StepReport& report, int depth) {
+  if (dt != last_dt_) newton_.invalidate_factor();  // the effective tangent depends on dt
+  last_dt_ = dt;
+  StepProblem problem(*this, dt);
+  const DofMap& dofs = system_.solid().dofs();
+  Vector x = dofs.gather_free(u_);
+  const NewtonReport newton = newton_.solve(problem, x);
+  if (report.iterations == 0 && report.substeps == 0) report.initial_residual = newton.initial_residual;
+  report.iterations += newton.iterations;
+  report.factorizations += newton.factorizations;
+  report.residual_evaluations += newton.residual_evaluations;
+  report.final_residual = newton.final_residual;
+  report.max_shift = std::max(report.max_shift, newton.max_shift);
+  report.assembly_seconds += newton.assembly_seconds;
+  report.factorization_seconds += newton.factorization_seconds;
+  report.solve_seconds += newton.solve_seconds;
+
+  if (newton.converged) {
+    const Vector a = problem.acceleration(x);
+    const Vector v = problem.velocity(a);
+    u_ = problem.full(x);
+    dofs.scatter_free(v, v_);
+    dofs.scatter_free(a, a_);
+    t_ += dt;
+    ++report.substeps;
+    return true;
+  }
+  std::ostringstream why;
+  why << "t = " << t_ << " s, dt = " << dt << " s: " << newton.failure;
+  if (depth >= settings_.max_cuts) {
+    report.message += (report.message.empty() ? "" : "; ") + why.str() + "; no cuts left";
+    return false;
+  }
+  ++report.cuts;
+  report.message += (report.message.empty() ? "" : "; ") + why.str() + ", step halved";
+  return advance(0.5 * dt, report, depth + 1) && advance(0.5 * dt, report, depth + 1);
+}
+
+}  // namespace tongue::fem

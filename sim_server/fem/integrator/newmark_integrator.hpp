@@ -1,0 +1,74 @@
+#pragma once
+// Implicit dynamics M a + C v + f_int(u) = f_ext(u) with the Newmark scheme (Newmark 1959;
+// Bathe 1996, sec. 9.2.4):
+//   u_{n+1} = u_n + dt v_n + dt^2 [(1/2 - beta) a_n + beta a_{n+1}],
+//   v_{n+1} = v_n + dt [(1 - gamma) a_n + gamma a_{n+1}],
+// each step solved for u_{n+1} by Newton. beta = 1/4, gamma = 1/2 (average acceleration) is
+// unconditionally stable and second-order accurate. Rayleigh damping C = alpha M + beta_R K0,
+// with K0 the tangent stiffness at the state the integrator is initialized in (for the tongue:
+// the rest state under gravity): a constant C keeps the damping force linear in v and the
+// Newton tangent exact.
+#include <memory>
+#include <optional>
+
+#include "fem/integrator/mechanical_system.hpp"
+#include "fem/integrator/step_report.hpp"
+#include "fem/solver/newton_solver.hpp"
+
+namespace tongue::fem {
+
+struct NewmarkParameters {
+  double beta = 0.25;
+  double gamma = 0.5;
+};
+
+struct RayleighDamping {
+  double mass_coefficient = 0.0;       // alpha [1/s]
+  double stiffness_coefficient = 0.0;  // beta_R [s]
+  bool active() const { return mass_coefficient != 0.0 || stiffness_coefficient != 0.0; }
+};
+
+struct DynamicSettings {
+  NewmarkParameters newmark;
+  RayleighDamping damping;
+  bool lumped_mass = false;
+  int max_cuts = 4;  // a step may be split into at most 2^max_cuts substeps
+  NewtonSettings newton;
+};
+
+class NewmarkIntegrator {
+ public:
+  NewmarkIntegrator(const MechanicalSystem& system, DynamicSettings settings);
+  ~NewmarkIntegrator();
+
+  // Sets u, v (full vectors; prescribed dofs take their prescribed values and zero velocity)
+  // and the consistent initial acceleration from M a = f_ext - f_int - C v. Throws
+  // std::runtime_error when f_int cannot be evaluated at u.
+  void initialize(const Vector& u0, const Vector& v0, double t0 = 0.0);
+
+  // Advances by dt; cuts and retries on failure. When the report says !converged the state is
+  // left at the last accepted substep.
+  StepReport step(double dt);
+
+  const Vector& displacement() const { return u_; }
+  const Vector& velocity() const { return v_; }
+  const Vector& acceleration() const { return a_; }
+  double time() const { return t_; }
+  const DynamicSettings& settings() const { return settings_; }
+  NewtonSolver& newton() { return newton_; }
+
+ private:
+  class StepProblem;
+  bool advance(double dt, StepReport& report, int depth);
+
+  const MechanicalSystem& system_;
+  DynamicSettings settings_;
+  SymmetricMatrix mass_;
+  std::optional<SymmetricMatrix> damping_;
+  NewtonSolver newton_;
+  Vector u_, v_, a_;  // full vectors
+  double t_ = 0.0;
+  double last_dt_ = 0.0;
+};
+
+}  // namespace tongue::fem

@@ -1,0 +1,96 @@
+#include "fem/integrator/static_solver.hpp"
+
+#include <chrono>
+#include <sstream>
+
+namespace tongue::fem {
+
+namespace {
+
+// Equilibrium at a fixed load factor, over the free dofs.
+class StaticProblem : public NonlinearProblem {
+ public:
+  StaticProblem(const MechanicalSystem& system, Vector u_template, double load_factor)
+      : system_(system), u_(std::move(u_template)), load_factor_(load_factor) {}
+
+  std::shared_ptr<const SparsityPattern> pattern() const override { return system_.solid().pattern(); }
+  bool residual(const Vector& x, Vector& r) override { return evaluate(x, r, nullptr); }
+  bool residual_and_tangent(const Vector& x, Vector& r, SymmetricMatrix& K) override {
+    return evaluate(x, r, &K);
+  }
+  const Vector& full(const Vector& x) {
+    system_.solid().dofs().scatter_free(x, u_);
+    return u_;
+  }
+
+ private:
+  bool evaluate(const Vector& x, Vector& r, SymmetricMatrix* K) {
+    Vector r_full;
+    if (!system_.residual(full(x), load_factor_, r_full, K).ok) return false;
+    r = system_.solid().dofs().gather_free(r_full);
+    return true;
+  }
+  const MechanicalSystem& system_;
+  Vector u_;
+  double load_factor_;
+};
+
+void accumulate(StepReport& step, const NewtonReport& newton) {
+  step.iterations += newton.iterations;
+  step.factorizations += newton.factorizations;
+  step.residual_evaluations += newton.residual_evaluations;
+  step.final_residual = newton.final_residual;
+  step.max_shift = std::max(step.max_shift, newton.max_shift);
+  step.assembly_seconds += newton.assembly_seconds;
+  step.factorization_seconds += newton.factorization_seconds;
+  step.solve_seconds += newton.solve_seconds;
+}
+
+}  // namespace
+
+StaticReport solve_static(const MechanicalSystem& system, Vector& u, const StaticSettings& settings) {
+  StaticReport report;
+  const DofMap& dofs = system.solid().dofs();
+  NewtonSolver newton(system.solid().pattern(), settings.newton);
+  double lambda = 0.0;
+  double increment = 1.0 / std::max(1, settings.load_steps);
+  int cuts_in_row = 0;
+  StepReport pending;  // cuts accumulate here until an increment is accepted
+  while (lambda < 1.0) {
+    const auto start = std::chrono::steady_clock::now();
+    const double target = std::min(1.0, lambda + increment);
+    Vector trial = u;
+    for (int dof : dofs.prescribed_dofs()) trial[dof] = target * dofs.prescribed_values()[dof];
+    StaticProblem problem(system, trial, target);
+    Vector x = dofs.gather_free(trial);
+    const NewtonReport result = newton.solve(problem, x);
+    if (pending.iterations == 0) pending.initial_residual = result.initial_residual;
+    accumulate(pending, result);
+    pending.wall_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (result.converged) {
+      u = problem.full(x);
+      lambda = target;
+      pending.time = lambda;
+      pending.dt = increment;
+      pending.converged = true;
+      report.increments.push_back(pending);
+      pending = StepReport{};
+      cuts_in_row = 0;
+      continue;
+    }
+    std::ostringstream why;
+    why << "load factor " << lambda << " -> " << target << ": " << result.failure;
+    if (++cuts_in_row > settings.max_cuts) {
+      report.message = why.str() + "; gave up after " + std::to_string(settings.max_cuts) + " cuts";
+      return report;
+    }
+    ++pending.cuts;
+    pending.message += (pending.message.empty() ? "" : "; ") + why.str() + ", increment halved";
+    increment *= 0.5;
+    newton.invalidate_factor();
+  }
+  report.converged = true;
+  return report;
+}
+
+}  // namespace tongue::fem

@@ -1,0 +1,25 @@
+#pragma once
+// What one step of a solver did: every step records it, so no unconverged or cut step goes
+// unreported.
+#include <string>
+
+namespace tongue::fem {
+
+struct StepReport {
+  double time = 0.0;          // simulated time at the end of the step [s]
+  double dt = 0.0;            // requested step [s]
+  bool converged = false;
+  int substeps = 1;           // > 1 when the step was cut and retried in pieces
+  int cuts = 0;               // how many times a (sub)step was halved
+  int iterations = 0;         // Newton iterations over all substeps
+  int factorizations = 0;
+  int residual_evaluations = 0;
+  double initial_residual = 0.0;  // of the first substep [N]
+  double final_residual = 0.0;    // of the last substep [N]
+  double max_shift = 0.0;         // largest regularizing shift of the tangent (0: none)
+  double wall_seconds = 0.0;
+  double assembly_seconds = 0.0, factorization_seconds = 0.0, solve_seconds = 0.0;
+  std::string message;  // why a cut happened or why the step failed; empty when clean
+};
+
+}  // namespace tongue::fem

@@ -1,0 +1,36 @@
+#pragma once
+// Element quality of trilinear hexahedra by the Jacobian determinant at the 8 nodes
+// (Luboz et al. 2001): an element is regular when all 8 nodal determinants are positive, which
+// is the condition for the isoparametric map to be invertible at the nodes.
+#include <array>
+#include <vector>
+
+#include "fem/mesh/mesh.hpp"
+
+namespace tongue::fem {
+
+// det(dX/dxi) at each corner xi = hex8::kNodeCoords[a], a = 0..7. For an undistorted cube of
+// side h every entry is (h / 2)^3. Throws std::out_of_range for a bad element index.
+std::array<double, 8> nodal_jacobian_determinants(const Mesh& mesh, int element);
+
+// True when all 8 nodal Jacobian determinants are strictly positive.
+bool is_regular(const Mesh& mesh, int element);
+
+// Rest volume [m^3] by 2x2x2 Gauss quadrature, exact for a trilinear map because det J is at
+// most quadratic in each reference coordinate. Negative for an inside-out element.
+double element_volume(const Mesh& mesh, int element);
+
+struct QualityReport {
+  int num_irregular = 0;
+  std::vector<int> irregular_elements;  // ascending
+  // Minimum over elements of min_a det_a / max_a |det_a|: 1 for parallelepipeds, in (0, 1] for
+  // regular elements and <= 0 for irregular ones (equals min/max det whenever max det > 0).
+  // 1 for a mesh without elements.
+  double worst_ratio = 1.0;
+  int worst_element = -1;     // element attaining worst_ratio, -1 for a mesh without elements
+  double total_volume = 0.0;  // sum of element_volume [m^3]
+};
+
+QualityReport check_quality(const Mesh& mesh);
+
+}  // namespace tongue::fem

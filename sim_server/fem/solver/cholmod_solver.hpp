@@ -1,0 +1,47 @@
+#pragma once
+// Sparse Cholesky factorization of the symmetric tangent with CHOLMOD (Chen, Davis, Hager &
+// Rajamanickam 2008). The fill-reducing ordering and symbolic analysis are done once per
+// sparsity pattern; each factorize() is numeric only. Supernodal, so the dense kernels run in
+// the BLAS the library is linked with.
+#include <memory>
+
+#include "fem/assembly/sparse_matrix.hpp"
+
+namespace tongue::fem {
+
+struct FactorizationReport {
+  bool ok = false;
+  // 0 when the matrix was positive definite. Otherwise the factorization fell back to
+  // A + shift I (a Levenberg-Marquardt regularization: the Newton direction stays a descent
+  // direction and convergence is still judged on the true residual), with the smallest shift
+  // tried that worked [same unit as A's diagonal].
+  double shift = 0.0;
+  int attempts = 0;
+  double seconds = 0.0;
+};
+
+class CholmodSolver {
+ public:
+  explicit CholmodSolver(std::shared_ptr<const SparsityPattern> pattern);
+  ~CholmodSolver();
+  CholmodSolver(const CholmodSolver&) = delete;
+  CholmodSolver& operator=(const CholmodSolver&) = delete;
+
+  FactorizationReport factorize(const SymmetricMatrix& matrix);
+  // Solves A x = b with the last successful factorization.
+  Vector solve(const Vector& b) const;
+  bool has_factor() const { return factored_; }
+
+  double analysis_seconds() const { return analysis_seconds_; }
+  double factor_nonzeros() const;      // nnz(L)
+  double factorization_flops() const;  // floating-point operations of one numeric factorization
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+  std::shared_ptr<const SparsityPattern> pattern_;
+  double analysis_seconds_ = 0.0;
+  bool factored_ = false;
+};
+
+}  // namespace tongue::fem

@@ -1,0 +1,127 @@
+#include "fem/solver/newton_solver.hpp"
+
+#include <chrono>
+#include <cmath>
+
+namespace tongue::fem {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+bool all_finite(const Vector& v) { return v.allFinite(); }
+
+}  // namespace
+
+NewtonSolver::NewtonSolver(std::shared_ptr<const SparsityPattern> pattern, NewtonSettings settings)
+    : settings_(settings), tangent_(pattern), linear_solver_(pattern) {}
+
+NewtonReport NewtonSolver::solve(NonlinearProblem& problem, Vector& x) {
+  NewtonReport report;
+  const NewtonSettings& s = settings_;
+  const Vector x0 = x;
+  Vector r(x.size());
+
+  auto evaluate = [&](const Vector& at, Vector& out) {
+    const auto start = Clock::now();
+    ++report.residual_evaluations;
+    const bool ok = problem.residual(at, out) && all_finite(out);
+    report.assembly_seconds += seconds_since(start);
+    return ok;
+  };
+
+  if (!evaluate(x, r)) {
+    report.failure = "residual not evaluable at the initial guess (inverted element or NaN)";
+    return report;
+  }
+  double r_norm = r.norm();
+  report.initial_residual = report.final_residual = r_norm;
+  report.residual_history.push_back(r_norm);
+  if (r_norm <= s.residual_atol) {
+    report.converged = true;
+    return report;
+  }
+
+  bool reform = factor_age_ < 0 || s.max_tangent_reuse == 0;
+  for (int k = 0; k < s.max_iterations; ++k) {
+    report.iterations = k + 1;
+    if (reform || factor_age_ >= s.max_tangent_reuse) {
+      auto start = Clock::now();
+      ++report.residual_evaluations;
+      if (!problem.residual_and_tangent(x, r, tangent_) || !all_finite(r)) {
+        report.failure = "tangent not evaluable";
+        factor_age_ = -1;
+        return report;
+      }
+      report.assembly_seconds += seconds_since(start);
+      const FactorizationReport f = linear_solver_.factorize(tangent_);
+      report.factorization_seconds += f.seconds;
+      ++report.factorizations;
+      report.max_shift = std::max(report.max_shift, f.shift);
+      if (!f.ok) {
+        report.failure = "tangent could not be factorized, even shifted";
+        factor_age_ = -1;
+        return report;
+      }
+      factor_age_ = 0;
+    }
+    auto start = Clock::now();
+    const Vector dx = -linear_solver_.solve(r);
+    report.solve_seconds += seconds_since(start);
+    ++factor_age_;
+
+    // Secant line search on s(eta) = dx . r(x + eta dx): step back from configurations that
+    // cannot be evaluated, and interpolate to the root of s when the full step overshoots.
+    const double s0 = dx.dot(r);
+    double eta = 1.0;
+    Vector x_trial = x + dx, r_trial(x.size());
+    bool evaluable = evaluate(x_trial, r_trial);
+    for (int halvings = 0; !evaluable && halvings < 6; ++halvings) {
+      eta *= 0.5;
+      x_trial = x + eta * dx;
+      evaluable = evaluate(x_trial, r_trial);
+    }
+    if (!evaluable) {
+      report.failure = "every step along the Newton direction inverts an element";
+      factor_age_ = -1;
+      return report;
+    }
+    if (s.line_search) {
+      for (int ls = 0; ls < 3; ++ls) {
+        const double s_eta = dx.dot(r_trial);
+        if (std::abs(s_eta) <= 0.8 * std::abs(s0) || s0 == s_eta) break;
+        const double next = std::clamp(eta * s0 / (s0 - s_eta), 0.1 * eta, eta);
+        if (next == eta) break;
+        Vector x_next = x + next * dx, r_next(x.size());
+        if (!evaluate(x_next, r_next)) break;
+        eta = next;
+        x_trial = std::move(x_next);
+        r_trial = std::move(r_next);
+      }
+    }
+    x = std::move(x_trial);
+    r = std::move(r_trial);
+    const double previous_norm = r_norm;
+    r_norm = r.norm();
+    report.final_residual = r_norm;
+    report.last_increment = eta * dx.norm();
+    report.residual_history.push_back(r_norm);
+
+    const bool residual_small = r_norm <= std::max(s.residual_rtol * report.initial_residual, s.residual_atol);
+    const bool increment_small =
+        report.last_increment <= std::max(s.increment_rtol * (x - x0).norm(), s.increment_atol);
+    if ((residual_small && increment_small) || r_norm <= s.residual_atol) {
+      report.converged = true;
+      return report;
+    }
+    reform = s.max_tangent_reuse == 0 || r_norm > s.reform_ratio * previous_norm;
+  }
+  report.failure = "no convergence in " + std::to_string(s.max_iterations) + " iterations";
+  factor_age_ = -1;
+  return report;
+}
+
+}  // namespace tongue::fem
