@@ -1,6 +1,7 @@
 #pragma once
 // Small fixed-size types shared by the whole FEM core.
 #include <Eigen/Core>
+#include <Eigen/LU>  // determinant() and inverse() of the small fixed-size matrices
 
 namespace tongue::fem {
 

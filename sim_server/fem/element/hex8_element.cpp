@@ -1,6 +1,8 @@
 #include "fem/element/hex8_element.hpp"
 
 #include <Eigen/LU>
+#include <algorithm>
+#include <limits>
 #include <stdexcept>
 
 namespace tongue::fem {
@@ -88,7 +90,8 @@ bool evaluate_element(const ElementGeometry& geometry, const hex8::ElementCoords
       // dJ/dx_{ai} = J g_{ai} and d2J/dx_{ai}dx_{bk} = J (g_ai g_bk - g_ak g_bi), with
       // g_a = F^{-T} dN_a/dX the spatial shape gradient (Bonet & Wood 2008, sec. 9.4).
       const Eigen::Matrix<double, 8, 3> g = G * F.inverse();
-      const Eigen::Map<const ElementVector> g_flat(g.transpose().eval().data());
+      const Eigen::Matrix<double, 3, 8> g_t = g.transpose();  // column a = g_a, so dof 3a + i
+      const Eigen::Map<const ElementVector> g_flat(g_t.data());
       v += w * J;
       dv += (w * J) * g_flat;
       if (want_stiffness) {

@@ -1,0 +1,309 @@
+// sim_batch SCENE.yaml [--output FILE] [--quiet]
+//
+// Runs a scene to the end without a message bus and logs it to an HDF5 run file: a static
+// analysis (the rest frame and the equilibrium) or a dynamic one (optionally settled under its
+// loads first, then steps of dt until the duration, every k-th step logged).
+//
+// Exit status: 0 done; 1 bad command line, scene error or I/O error; 2 a step or load increment
+// failed to converge even after cuts (the frames written so far are kept); 130 interrupted.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "fem/integrator/newmark_integrator.hpp"
+#include "fem/integrator/static_solver.hpp"
+#include "logging/position_log.hpp"
+#include "scene/scene_builder.hpp"
+#include "scene/scene_reader.hpp"
+
+namespace tongue::apps {
+namespace {
+
+constexpr int kExitOk = 0;
+constexpr int kExitError = 1;
+constexpr int kExitNotConverged = 2;
+constexpr int kExitInterrupted = 130;
+
+volatile std::sig_atomic_t g_interrupted = 0;
+extern "C" void on_interrupt(int) { g_interrupted = 1; }
+
+struct Options {
+  std::string scene_path;
+  std::optional<std::string> output;
+  bool quiet = false;
+};
+
+void print_usage(std::FILE* to) {
+  std::fprintf(to,
+               "usage: sim_batch SCENE.yaml [--output FILE] [--quiet]\n"
+               "  --output FILE  run file to write (overrides the scene's output.file)\n"
+               "  --quiet        no per-step lines, only the summary\n");
+}
+
+// Returns nullopt (after printing why) on a bad command line.
+std::optional<Options> parse_arguments(int argc, char** argv) {
+  Options options;
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      print_usage(stdout);
+      std::exit(kExitOk);
+    } else if (arg == "--quiet" || arg == "-q") {
+      options.quiet = true;
+    } else if (arg == "--output" || arg == "-o") {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "sim_batch: %s needs a file name\n", arg.c_str());
+        return std::nullopt;
+      }
+      options.output = argv[++i];
+    } else if (arg.rfind("--output=", 0) == 0) {
+      options.output = arg.substr(9);
+    } else if (!arg.empty() && arg[0] == '-') {
+      std::fprintf(stderr, "sim_batch: unknown option '%s'\n", arg.c_str());
+      return std::nullopt;
+    } else if (options.scene_path.empty()) {
+      options.scene_path = arg;
+    } else {
+      std::fprintf(stderr, "sim_batch: more than one scene given ('%s')\n", arg.c_str());
+      return std::nullopt;
+    }
+  }
+  if (options.scene_path.empty()) {
+    std::fprintf(stderr, "sim_batch: no scene given\n");
+    return std::nullopt;
+  }
+  return options;
+}
+
+// Totals over the steps since the last logged frame, and over the whole run.
+struct Tally {
+  int steps = 0, iterations = 0, cuts = 0;
+  double wall = 0.0;  // s
+  double residual = 0.0;
+
+  void add(const fem::StepReport& r) {
+    ++steps;
+    iterations += r.iterations;
+    cuts += r.cuts;
+    wall += r.wall_seconds;
+    residual = r.final_residual;
+  }
+  logging::SolverFigures figures() const { return {iterations, residual, wall, cuts}; }
+};
+
+class BatchRun {
+ public:
+  BatchRun(const scene::Scene& scene, scene::BuiltScene built, const std::string& output,
+           bool quiet)
+      : scene_(scene), built_(std::move(built)), quiet_(quiet) {
+    const fem::SolidModel& solid = *built_.solid;
+    if (!output.empty()) {
+      logging::PositionLogOptions options;
+      // A static run's frames are load factors, not times. (assign, not = "1": GCC 12 warns
+      // falsely about overlapping memcpy for a one-character literal.)
+      if (!is_dynamic()) options.time_unit.assign(1, '1');
+      log_ = std::make_unique<logging::PositionLog>(output, solid.mesh(), scene_.text, options);
+      log_->set_attribute("analysis", is_dynamic() ? "dynamic" : "static");
+      log_->set_attribute("status", "running");
+    }
+    std::printf("%s: %d nodes, %d hex8, %d free dofs, mass %.4g kg, volume %.4g cm^3, %s analysis\n",
+                scene_.source.c_str(), solid.mesh().num_nodes(), solid.mesh().num_elements(),
+                solid.dofs().num_free(), solid.total_mass(), solid.reference_volume() * 1e6,
+                is_dynamic() ? "dynamic" : "static");
+    if (log_) {
+      std::printf("run file: %s\n", output.c_str());
+    } else {
+      std::printf("no run file (give --output or output.file)\n");
+    }
+  }
+
+  int run() {
+    const auto start = std::chrono::steady_clock::now();
+    const int status = is_dynamic() ? run_dynamic() : run_static();
+    wall_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    summary(status);
+    if (log_) {
+      log_->set_attribute("status", status == kExitOk                ? "completed"
+                                    : status == kExitInterrupted     ? "interrupted"
+                                                                     : "failed: " + failure_);
+      log_->flush();
+    }
+    return status;
+  }
+
+ private:
+  bool is_dynamic() const { return scene_.analysis.type == scene::AnalysisType::dynamic; }
+
+  // Static equilibrium by load stepping: solve_static reports every increment but hands back
+  // only the final state, so the run file holds the rest frame and the equilibrium.
+  int run_static() {
+    fem::Vector u = fem::Vector::Zero(built_.solid->num_dofs());
+    write_frame(0.0, u, {});
+    const fem::StaticReport report = fem::solve_static(*built_.system, u, built_.static_settings);
+    Tally tally;
+    header("incr", "lambda [1]");
+    for (const fem::StepReport& inc : report.increments) {
+      tally.add(inc);
+      step_line(tally.steps, inc.time, inc);
+    }
+    total_.steps += tally.steps;
+    total_.iterations += tally.iterations;
+    total_.cuts += tally.cuts;
+    track(u);
+    // On failure u is the last accepted increment: keep it, at its load factor.
+    if (!report.increments.empty()) write_frame(report.increments.back().time, u, tally.figures());
+    if (!report.converged) {
+      failure_ = report.message;
+      std::fprintf(stderr, "sim_batch: static solution failed: %s\n", report.message.c_str());
+      return kExitNotConverged;
+    }
+    return kExitOk;
+  }
+
+  int run_dynamic() {
+    const scene::AnalysisSpec& a = scene_.analysis;
+    const int n = built_.solid->num_dofs();
+    fem::Vector u = fem::Vector::Zero(n);
+    Tally settle;
+    if (a.settle) {
+      const fem::StaticReport report = fem::solve_static(*built_.system, u, built_.static_settings);
+      for (const fem::StepReport& inc : report.increments) settle.add(inc);
+      if (!quiet_)
+        std::printf("settle: %d increments, %d iterations, %d cuts, residual %.3e N, wall %.1f ms\n",
+                    settle.steps, settle.iterations, settle.cuts, settle.residual,
+                    settle.wall * 1e3);
+      total_.iterations += settle.iterations;
+      total_.cuts += settle.cuts;
+      if (!report.converged) {
+        failure_ = "settling: " + report.message;
+        std::fprintf(stderr, "sim_batch: settling failed: %s\n", report.message.c_str());
+        return kExitNotConverged;
+      }
+    }
+    // Damping's K0 is the tangent where the integrator is initialized: the settled state if
+    // the scene settles, else the rest state.
+    fem::NewmarkIntegrator integrator(*built_.system, built_.dynamic_settings);
+    if (a.settle) integrator.initialize(u, fem::Vector::Zero(n), 0.0);
+    track(integrator.displacement());
+    write_frame(0.0, integrator.displacement(), settle.figures());
+
+    const int count = scene::time_step_count(a);
+    const int every = scene_.output.every;
+    header("step", "t [s]");
+    Tally since_frame;
+    for (int s = 0; s < count; ++s) {
+      if (g_interrupted) {
+        std::fprintf(stderr, "sim_batch: interrupted at t = %.6g s\n", integrator.time());
+        return kExitInterrupted;
+      }
+      const double t0 = integrator.time();
+      const fem::StepReport r = integrator.step(scene::time_step_length(a, s));
+      since_frame.add(r);
+      ++total_.steps;
+      total_.iterations += r.iterations;
+      total_.cuts += r.cuts;
+      step_line(s + 1, r.time, r);
+      if (!r.converged) {
+        failure_ = r.message;
+        std::fprintf(stderr, "sim_batch: step %d (from t = %.6g s, dt = %.6g s) failed to converge: %s\n",
+                     s + 1, t0, r.dt, r.message.c_str());
+        return kExitNotConverged;
+      }
+      simulated_ = integrator.time();
+      track(integrator.displacement());
+      if ((s + 1) % every == 0 || s + 1 == count) {
+        write_frame(integrator.time(), integrator.displacement(), since_frame.figures());
+        since_frame = Tally{};
+      }
+    }
+    return kExitOk;
+  }
+
+  void write_frame(double time, const fem::Vector& u, const logging::SolverFigures& figures) {
+    if (log_) log_->append(time, built_.solid->rest_positions() + u, figures);
+  }
+
+  // Largest nodal displacement and volume change seen so far.
+  void track(const fem::Vector& u) {
+    final_displacement_ = 0.0;
+    for (int node = 0; node < u.size() / 3; ++node)
+      final_displacement_ = std::max(final_displacement_, u.segment<3>(3 * node).norm());
+    max_displacement_ = std::max(max_displacement_, final_displacement_);
+    const fem::SolidModel& solid = *built_.solid;
+    volume_change_ = solid.current_volume(u) / solid.reference_volume() - 1.0;
+    max_volume_change_ = std::max(max_volume_change_, std::abs(volume_change_));
+  }
+
+  void header(const char* step, const char* time) const {
+    if (quiet_) return;
+    std::printf("%6s %12s %5s %13s %10s %5s\n", step, time, "iter", "residual [N]", "wall [ms]",
+                "cuts");
+  }
+
+  void step_line(int step, double time, const fem::StepReport& r) const {
+    if (quiet_) return;
+    std::printf("%6d %12.6f %5d %13.3e %10.2f %5d%s\n", step, time, r.iterations, r.final_residual,
+                r.wall_seconds * 1e3, r.cuts, r.converged ? "" : "  NOT CONVERGED");
+    if (r.cuts > 0 && r.converged) std::printf("       cut: %s\n", r.message.c_str());
+  }
+
+  void summary(int status) const {
+    std::printf("summary: %s, %d %s, %d cuts, %d Newton iterations, wall %.3f s",
+                status == kExitOk ? "completed" : status == kExitInterrupted ? "interrupted" : "FAILED",
+                total_.steps, is_dynamic() ? "steps" : "increments", total_.cuts, total_.iterations,
+                wall_);
+    if (is_dynamic()) {
+      std::printf(", simulated %.4g s, real-time factor %.3g", simulated_,
+                  wall_ > 0.0 ? simulated_ / wall_ : 0.0);
+    }
+    std::printf("\n         max displacement %.4g mm (last %.4g mm), volume change %+.4f %% "
+                "(largest |change| %.4f %%)\n",
+                max_displacement_ * 1e3, final_displacement_ * 1e3, volume_change_ * 100.0,
+                max_volume_change_ * 100.0);
+    if (log_) std::printf("         run file %s: %d frames\n", log_->path().c_str(), log_->frames());
+  }
+
+  const scene::Scene& scene_;
+  scene::BuiltScene built_;
+  bool quiet_;
+  std::unique_ptr<logging::PositionLog> log_;
+  Tally total_;
+  std::string failure_;
+  double wall_ = 0.0, simulated_ = 0.0;
+  double max_displacement_ = 0.0, final_displacement_ = 0.0;  // m
+  double volume_change_ = 0.0, max_volume_change_ = 0.0;      // relative
+};
+
+int run(int argc, char** argv) {
+  const std::optional<Options> options = parse_arguments(argc, argv);
+  if (!options) {
+    print_usage(stderr);
+    return kExitError;
+  }
+  try {
+    const scene::Scene scene = scene::read_scene(options->scene_path);
+    scene::BuiltScene built = scene::build_scene(scene);
+    const std::string output = options->output ? *options->output : scene.output.file;
+    std::signal(SIGINT, on_interrupt);
+    std::signal(SIGTERM, on_interrupt);
+    BatchRun batch(scene, std::move(built), output, options->quiet);
+    return batch.run();
+  } catch (const scene::SceneError& e) {
+    std::fprintf(stderr, "sim_batch: scene error: %s\n", e.what());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "sim_batch: error: %s\n", e.what());
+  }
+  return kExitError;
+}
+
+}  // namespace
+}  // namespace tongue::apps
+
+int main(int argc, char** argv) { return tongue::apps::run(argc, argv); }

@@ -1,0 +1,77 @@
+#pragma once
+// An HDF5 run file that grows by one frame per logged step, readable while the run goes on and
+// complete up to the last flush if the run dies. Layout (format_version 1):
+//
+//   /time               [T]          double  s (or "1" for the load factor of a static run)
+//   /positions          [T x N x 3]  double  m, current node positions
+//   /rest_positions     [N x 3]      double  m
+//   /elements           [E x 8]      int32   0-based node indices, ANSYS SOLID185 node order
+//   /solver/iterations  [T]          int32   Newton iterations since the previous frame
+//   /solver/residual    [T]          double  N, final residual norm of the frame's step
+//   /solver/wall_time   [T]          double  s, wall-clock time since the previous frame
+//   /solver/cuts        [T]          int32   step halvings since the previous frame
+// (When every step is logged, "since the previous frame" is simply "of the step".)
+//   root attributes: format_version (int), length_unit = "m", time_unit, scene_text (the YAML),
+//                    plus any set with set_attribute (e.g. "status").
+// Every dataset has a "units" and a "description" attribute. The time-indexed datasets are
+// chunked along time and deflate-compressed, extended on each append.
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "fem/mesh/mesh.hpp"
+#include "fem/types.hpp"
+
+namespace tongue::logging {
+
+// Solver figures of one frame: totals over the steps since the previous frame.
+struct SolverFigures {
+  int iterations = 0;
+  double residual = 0.0;   // N
+  double wall_time = 0.0;  // s
+  int cuts = 0;
+};
+
+struct PositionLogOptions {
+  std::string time_unit = "s";  // "1" when the time axis is a static load factor
+  int deflate_level = 4;        // 0: no compression
+  double flush_interval = 1.0;  // s of wall time between flushes; 0: after every append
+};
+
+// An HDF5 call failed; what() names the file and the operation.
+class PositionLogError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+class PositionLog {
+ public:
+  // Creates (or truncates) the file, creating missing parent directories, and writes the
+  // mesh and the root attributes.
+  PositionLog(const std::string& path, const fem::Mesh& mesh, const std::string& scene_text,
+              const PositionLogOptions& options = PositionLogOptions{});
+  ~PositionLog();  // flushes and closes; never throws
+  PositionLog(const PositionLog&) = delete;
+  PositionLog& operator=(const PositionLog&) = delete;
+
+  // positions: current node positions flattened as 3 n + c [m], 3 N entries.
+  void append(double time, const fem::Vector& positions, const SolverFigures& figures);
+  // A string attribute on the root group, replaced if it exists.
+  void set_attribute(const std::string& name, const std::string& value);
+  void flush();
+
+  int frames() const { return frames_; }
+  int num_nodes() const { return num_nodes_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  struct Handles;
+  std::string path_;
+  int num_nodes_ = 0;
+  int frames_ = 0;
+  double flush_interval_ = 1.0;
+  double last_flush_ = 0.0;  // steady-clock seconds
+  std::unique_ptr<Handles> h_;
+};
+
+}  // namespace tongue::logging

@@ -1,0 +1,144 @@
+#pragma once
+// A scene is the data describing one run: mesh, material, node sets, constraints, loads, damping,
+// analysis, solver settings and output. It is plain data: scene_reader.hpp fills it from YAML,
+// scene_builder.hpp turns it into a model. The member initializers below are the defaults, and
+// the only place they are written (the material parameters' defaults live in the material
+// factory's parameter table; the solver's and Newmark's in the fem settings structs used here).
+//
+// YAML schema (all quantities SI; paths of mesh files relative to the scene file):
+//
+//   mesh:                          # required; exactly one of box / ansys
+//     box: {origin: [0, 0, 0], size: [0.04, 0.01, 0.01], divisions: [8, 2, 2]}   # m
+//         # origin optional (default 0); size > 0 and divisions >= 1 required.
+//         # The mesh's node sets: x_min, x_max, y_min, y_max, z_min, z_max (faces), all.
+//     ansys: {nodes: file.node, elements: file.elem, length_scale: 0.001}
+//         # NWRITE/EWRITE text files; length_scale (default 1) turns file units into metres.
+//         # The mesh's node sets: all and mat_<n> (the nodes of the elements of material n).
+//   material:                      # required
+//     type: mooney_rivlin5         # required: mooney_rivlin5 | exponential | neo_hookean | linear
+//     parameters: {poisson_ratio: 0.49}   # optional; names, units and defaults from the material
+//                                         # factory's table (fem/material/material_factory.hpp)
+//     density: 1000                # kg/m^3, default 1000
+//     formulation: mean_dilatation # mean_dilatation | standard; default mean_dilatation for
+//                                  # materials with an isochoric/volumetric split, else standard
+//   node_sets:                     # optional; named sets in addition to the mesh's own
+//     clamped: {box: {min: [-1e-9, -1, -1], max: [1e-9, 1, 1]}}   # rest positions, closed box, m
+//     tip: {ids: [5, 7]}           # ANSYS node ids for an imported mesh, 0-based indices otherwise
+//     both: {union: [clamped, tip]}
+//   constraints:                   # optional; per-component Dirichlet conditions
+//     - {set: clamped, components: [x, y, z]}            # displacement default 0 (fixed)
+//     - {set: tip, components: [z], displacement: 0.0}   # m; a number, or one per component
+//   gravity: [0, -9.81, 0]         # m/s^2; optional (none when omitted)
+//   loads:                         # optional; uniform traction on the boundary faces whose four
+//     - {set: x_max, total_force: [0, -0.01, 0]}   # nodes are all in the set; N in total
+//   damping: {alpha: 0.0, beta: 0.028}   # Rayleigh C = alpha M + beta K0, 1/s and s; optional.
+//                                        # K0: tangent at the initial (settled or rest) state
+//   analysis:                      # required
+//     type: dynamic                # required: static | dynamic
+//     settle: false                # dynamic: start from static equilibrium under the loads
+//     duration: 0.1                # s; required for dynamic
+//     dt: 0.001                    # s; required for dynamic, <= duration
+//     load_steps: 1                # static (and settle): equal load increments
+//     newmark: {beta: 0.25, gamma: 0.5}
+//     lumped_mass: false
+//     max_cuts: 4                  # a failing step or increment is halved at most this often
+//   solver: {residual_rtol: 1e-6, residual_atol: 1e-9, increment_rtol: 1e-6,
+//            increment_atol: 1e-12, max_iterations: 25, line_search: true,
+//            max_tangent_reuse: 0, reform_ratio: 0.5}   # all optional (fem::NewtonSettings)
+//   output:
+//     file: logs/run.h5            # relative to the working directory; default: no file
+//     every: 1                     # write every k-th step (the first and last are always written)
+//
+// A key whose value is empty (`gravity:` with nothing after it) counts as omitted.
+#include <array>
+#include <map>
+#include <optional>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "fem/element/hex8_element.hpp"
+#include "fem/integrator/newmark_integrator.hpp"
+#include "fem/solver/newton_solver.hpp"
+#include "fem/types.hpp"
+
+namespace tongue::scene {
+
+struct BoxMeshSpec {
+  fem::Vec3 origin = fem::Vec3::Zero();  // m
+  fem::Vec3 size = fem::Vec3::Zero();    // m, every component > 0
+  std::array<int, 3> divisions{1, 1, 1};
+};
+
+struct AnsysMeshSpec {
+  std::string nodes_path;     // resolved against the scene file's directory
+  std::string elements_path;  // idem
+  double length_scale = 1.0;  // file length unit in metres
+};
+
+using MeshSpec = std::variant<BoxMeshSpec, AnsysMeshSpec>;
+
+struct MaterialSpec {
+  std::string type;
+  std::map<std::string, double> parameters;  // as given; the factory fills in its defaults
+  double density = 1000.0;                   // kg/m^3 (DESIGN.md sec. 2: 1 g/cm^3)
+  // Resolved by the reader: mean_dilatation for split materials unless the scene says otherwise.
+  fem::Formulation formulation = fem::Formulation::mean_dilatation;
+};
+
+struct NodeSetSpec {
+  enum class Kind { box, ids, set_union };
+  std::string name;
+  Kind kind = Kind::ids;
+  fem::Vec3 box_min = fem::Vec3::Zero(), box_max = fem::Vec3::Zero();  // m (Kind::box)
+  std::vector<long> ids;             // Kind::ids: ANSYS ids, or 0-based indices for a box mesh
+  std::vector<std::string> members;  // Kind::set_union: names of other node sets
+};
+
+struct ConstraintSpec {
+  std::string set;
+  std::vector<int> components;        // 0 = x, 1 = y, 2 = z; distinct
+  std::vector<double> displacements;  // m, one per component
+};
+
+struct SurfaceLoadSpec {
+  std::string set;
+  fem::Vec3 total_force = fem::Vec3::Zero();  // N
+};
+
+enum class AnalysisType { static_equilibrium, dynamic };
+
+struct AnalysisSpec {
+  AnalysisType type = AnalysisType::static_equilibrium;
+  bool settle = false;
+  double duration = 0.0;  // s
+  double dt = 0.0;        // s
+  int load_steps = 1;
+  fem::NewmarkParameters newmark;
+  bool lumped_mass = false;
+  int max_cuts = 4;
+};
+
+struct OutputSpec {
+  std::string file;  // empty: no run file unless the command line names one
+  int every = 1;
+};
+
+struct Scene {
+  std::string source;    // the scene file's path (or a label), used in error messages
+  std::string text;      // the YAML text as read, stored in the run file
+  std::string base_dir;  // directory that relative mesh paths were resolved against
+
+  MeshSpec mesh = BoxMeshSpec{};
+  MaterialSpec material;
+  std::vector<NodeSetSpec> node_sets;  // in file order
+  std::vector<ConstraintSpec> constraints;
+  std::optional<fem::Vec3> gravity;  // m/s^2
+  std::vector<SurfaceLoadSpec> loads;
+  fem::RayleighDamping damping;  // zero coefficients: no damping
+  AnalysisSpec analysis;
+  fem::NewtonSettings solver;
+  OutputSpec output;
+};
+
+}  // namespace tongue::scene

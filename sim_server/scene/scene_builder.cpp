@@ -1,0 +1,259 @@
+#include "scene/scene_builder.hpp"
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <functional>
+#include <set>
+#include <stdexcept>
+
+#include "fem/assembly/loads.hpp"
+#include "fem/assembly/surface_load.hpp"
+#include "fem/material/material_factory.hpp"
+#include "fem/mesh/ansys_reader.hpp"
+#include "fem/mesh/box_generator.hpp"
+#include "scene/scene_reader.hpp"
+
+namespace tongue::scene {
+
+namespace {
+
+std::string format(double v) {
+  char buf[32];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
+}
+
+const char* const kComponentNames[3] = {"x", "y", "z"};
+
+class Builder {
+ public:
+  explicit Builder(const Scene& scene) : scene_(scene) {}
+
+  BuiltScene build() {
+    BuiltScene built;
+    fem::Mesh mesh = make_mesh(built.node_index_of_id);
+    add_element_set_nodes(mesh);
+    resolve_scene_sets(mesh, built.node_index_of_id);
+    built.prescribed = prescribed_dofs(mesh);
+
+    std::shared_ptr<const fem::Material> material;
+    try {
+      material = fem::make_material(scene_.material.type, scene_.material.parameters);
+    } catch (const std::invalid_argument& e) {
+      fail("material.parameters", e.what());  // the reader checks this too; kept for hand-made scenes
+    }
+    try {
+      built.solid = std::make_shared<const fem::SolidModel>(
+          std::move(mesh), material, scene_.material.formulation, scene_.material.density,
+          built.prescribed);
+    } catch (const std::invalid_argument& e) {
+      fail("mesh", e.what());
+    }
+
+    built.system = std::make_unique<fem::MechanicalSystem>(built.solid);
+    if (scene_.gravity) {
+      built.system->add_load(
+          std::make_shared<fem::ConstantForce>("gravity", built.solid->body_force(*scene_.gravity)));
+    }
+    for (std::size_t i = 0; i < scene_.loads.size(); ++i) {
+      const SurfaceLoadSpec& load = scene_.loads[i];
+      const std::string path = "loads[" + std::to_string(i) + "].set";
+      const std::vector<int>& nodes = built.solid->mesh().node_set(load.set);
+      fem::Vector force;
+      try {
+        force = fem::uniform_surface_force(built.solid->mesh(), nodes, load.total_force);
+      } catch (const std::invalid_argument& e) {
+        fail(path, "node set '" + load.set + "': " + e.what());
+      }
+      built.system->add_load(
+          std::make_shared<fem::ConstantForce>("surface load on " + load.set, std::move(force)));
+    }
+
+    const AnalysisSpec& a = scene_.analysis;
+    built.static_settings.load_steps = a.load_steps;
+    built.static_settings.max_cuts = a.max_cuts;
+    built.static_settings.newton = scene_.solver;
+    built.dynamic_settings.newmark = a.newmark;
+    built.dynamic_settings.damping = scene_.damping;
+    built.dynamic_settings.lumped_mass = a.lumped_mass;
+    built.dynamic_settings.max_cuts = a.max_cuts;
+    built.dynamic_settings.newton = scene_.solver;
+    return built;
+  }
+
+ private:
+  [[noreturn]] void fail(const std::string& path, const std::string& reason) const {
+    throw SceneError(scene_.source, path, reason);
+  }
+
+  fem::Mesh make_mesh(std::map<long, int>& id_map) const {
+    if (const auto* box = std::get_if<BoxMeshSpec>(&scene_.mesh)) {
+      try {
+        return fem::make_box(box->origin, box->size, box->divisions[0], box->divisions[1],
+                             box->divisions[2]);
+      } catch (const std::invalid_argument& e) {
+        fail("mesh.box", e.what());
+      }
+    }
+    const auto& ansys = std::get<AnsysMeshSpec>(scene_.mesh);
+    try {
+      fem::ImportedMesh imported =
+          fem::read_ansys_mesh(ansys.nodes_path, ansys.elements_path, ansys.length_scale);
+      id_map = std::move(imported.node_index_of_id);
+      return std::move(imported.mesh);
+    } catch (const fem::MeshReadError& e) {
+      fail("mesh.ansys", e.what());
+    } catch (const std::invalid_argument& e) {
+      fail("mesh.ansys", e.what());
+    }
+  }
+
+  // An element set names a region (a material of an imported mesh); its nodes are the node set
+  // of the same name, so constraints and loads can refer to it.
+  static void add_element_set_nodes(fem::Mesh& mesh) {
+    for (const auto& [name, elements] : mesh.element_sets) {
+      if (mesh.node_sets.count(name)) continue;
+      std::set<int> nodes;
+      for (int e : elements) nodes.insert(mesh.elements[e].begin(), mesh.elements[e].end());
+      mesh.node_sets.emplace(name, std::vector<int>(nodes.begin(), nodes.end()));
+    }
+  }
+
+  void resolve_scene_sets(fem::Mesh& mesh, const std::map<long, int>& id_map) const {
+    const bool imported = std::holds_alternative<AnsysMeshSpec>(scene_.mesh);
+    std::map<std::string, const NodeSetSpec*> specs;
+    for (const auto& s : scene_.node_sets) {
+      if (mesh.node_sets.count(s.name))
+        fail("node_sets." + s.name, "name is already taken by a node set of the mesh");
+      specs[s.name] = &s;
+    }
+    // Unions may name sets defined later in the file: resolve on demand. The reader has
+    // rejected cycles; `depth` guards hand-made scenes.
+    std::function<const std::vector<int>&(const std::string&, const std::string&, int)> resolve =
+        [&](const std::string& name, const std::string& used_at,
+            int depth) -> const std::vector<int>& {
+      if (const auto it = mesh.node_sets.find(name); it != mesh.node_sets.end()) return it->second;
+      const auto spec_it = specs.find(name);
+      if (spec_it == specs.end()) fail(used_at, "unknown node set '" + name + "'");
+      if (depth > static_cast<int>(specs.size()))
+        fail(used_at, "node set '" + name + "' refers back to itself");
+      const NodeSetSpec& s = *spec_it->second;
+      const std::string path = "node_sets." + s.name;
+      std::vector<int> nodes;
+      switch (s.kind) {
+        case NodeSetSpec::Kind::box:
+          // Tolerance: the box is closed and meant to catch nodes on its faces; scale-relative
+          // round-off of coordinates like 0.1 * 0.4 would otherwise drop them.
+          nodes = fem::nodes_in_box(mesh, s.box_min, s.box_max, box_tolerance(mesh));
+          if (nodes.empty())
+            fail(path + ".box", "selects no nodes (rest positions in m: check units and bounds)");
+          break;
+        case NodeSetSpec::Kind::ids:
+          for (std::size_t i = 0; i < s.ids.size(); ++i) {
+            const std::string id_path = path + ".ids[" + std::to_string(i) + "]";
+            if (imported) {
+              const auto it = id_map.find(s.ids[i]);
+              if (it == id_map.end())
+                fail(id_path, "no node with id " + std::to_string(s.ids[i]) + " in the mesh file");
+              nodes.push_back(it->second);
+            } else {
+              if (s.ids[i] >= mesh.num_nodes())
+                fail(id_path, "node index " + std::to_string(s.ids[i]) + " out of range: the mesh has " +
+                                  std::to_string(mesh.num_nodes()) + " nodes (0-based)");
+              nodes.push_back(static_cast<int>(s.ids[i]));
+            }
+          }
+          break;
+        case NodeSetSpec::Kind::set_union:
+          for (std::size_t i = 0; i < s.members.size(); ++i) {
+            const auto& part =
+                resolve(s.members[i], path + ".union[" + std::to_string(i) + "]", depth + 1);
+            nodes.insert(nodes.end(), part.begin(), part.end());
+          }
+          break;
+      }
+      std::sort(nodes.begin(), nodes.end());
+      nodes.erase(std::unique(nodes.begin(), nodes.end()), nodes.end());
+      if (nodes.empty()) fail(path, "the set is empty");
+      return mesh.node_sets.emplace(s.name, std::move(nodes)).first->second;
+    };
+    for (const auto& s : scene_.node_sets) resolve(s.name, "node_sets." + s.name, 0);
+    // Sets named by constraints and loads must exist now (e.g. "mat_7" of an imported mesh).
+    for (std::size_t i = 0; i < scene_.constraints.size(); ++i)
+      check_exists(mesh, scene_.constraints[i].set,
+                   "constraints[" + std::to_string(i) + "].set");
+    for (std::size_t i = 0; i < scene_.loads.size(); ++i)
+      check_exists(mesh, scene_.loads[i].set, "loads[" + std::to_string(i) + "].set");
+  }
+
+  void check_exists(const fem::Mesh& mesh, const std::string& name, const std::string& path) const {
+    try {
+      if (mesh.node_set(name).empty()) fail(path, "node set '" + name + "' is empty");
+    } catch (const std::invalid_argument& e) {
+      fail(path, e.what());
+    }
+  }
+
+  // 1e-9 of the mesh's extent [m]: far below any element size, far above coordinate round-off.
+  static double box_tolerance(const fem::Mesh& mesh) {
+    if (mesh.nodes.empty()) return 0.0;
+    fem::Vec3 lo = mesh.nodes.front(), hi = lo;
+    for (const auto& x : mesh.nodes) {
+      lo = lo.cwiseMin(x);
+      hi = hi.cwiseMax(x);
+    }
+    return 1e-9 * (hi - lo).maxCoeff();
+  }
+
+  std::vector<fem::PrescribedDof> prescribed_dofs(const fem::Mesh& mesh) const {
+    // dof -> (value, index of the constraint that set it): a later constraint may repeat a value
+    // (overlapping sets), but two different values for one dof is a contradiction.
+    std::map<int, std::pair<double, std::size_t>> value_of;
+    std::vector<fem::PrescribedDof> prescribed;
+    for (std::size_t i = 0; i < scene_.constraints.size(); ++i) {
+      const ConstraintSpec& c = scene_.constraints[i];
+      for (int node : mesh.node_set(c.set)) {
+        for (std::size_t k = 0; k < c.components.size(); ++k) {
+          const int component = c.components[k];
+          const double value = c.displacements[k];
+          const auto [it, inserted] = value_of.emplace(3 * node + component, std::pair{value, i});
+          if (!inserted) {
+            if (it->second.first != value)
+              fail("constraints[" + std::to_string(i) + "]",
+                   "node " + std::to_string(node) + " component " + kComponentNames[component] +
+                       " is prescribed " + format(value) + " m here and " +
+                       format(it->second.first) + " m by constraints[" +
+                       std::to_string(it->second.second) + "]");
+            continue;
+          }
+          prescribed.push_back({node, component, value});
+        }
+      }
+    }
+    return prescribed;
+  }
+
+  const Scene& scene_;
+};
+
+}  // namespace
+
+BuiltScene build_scene(const Scene& scene) { return Builder(scene).build(); }
+
+int time_step_count(const AnalysisSpec& analysis) {
+  if (!(analysis.dt > 0.0) || !(analysis.duration > 0.0)) return 0;
+  const double ratio = analysis.duration / analysis.dt;
+  return std::max(1, static_cast<int>(std::ceil(ratio - 1e-9)));
+}
+
+double time_step_length(const AnalysisSpec& analysis, int step) {
+  const int count = time_step_count(analysis);
+  if (step < count - 1) return analysis.dt;
+  // Keep dt itself when the remainder differs only by round-off: a new step length costs a
+  // fresh factorization.
+  const double rest = analysis.duration - (count - 1) * analysis.dt;
+  return std::abs(rest - analysis.dt) <= 1e-9 * analysis.dt ? analysis.dt : rest;
+}
+
+}  // namespace tongue::scene

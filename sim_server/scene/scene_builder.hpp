@@ -1,0 +1,39 @@
+#pragma once
+// Turns a Scene into a model ready to run: the mesh with every named node set resolved, the
+// solid with its constraints, the loads, and the solver settings of the chosen analysis.
+#include <map>
+#include <memory>
+#include <vector>
+
+#include "fem/assembly/solid_model.hpp"
+#include "fem/integrator/mechanical_system.hpp"
+#include "fem/integrator/newmark_integrator.hpp"
+#include "fem/integrator/static_solver.hpp"
+#include "scene/scene.hpp"
+
+namespace tongue::scene {
+
+struct BuiltScene {
+  // The solid's mesh holds every node set by name: the mesh's own (box faces, "all"), one per
+  // element set ("mat_<n>" of an imported mesh: the nodes of its elements), and the scene's.
+  std::shared_ptr<const fem::SolidModel> solid;
+  // Loads: "gravity" when the scene has gravity, then one per entry of `loads`, in that order.
+  std::unique_ptr<fem::MechanicalSystem> system;
+  fem::StaticSettings static_settings;    // for a static analysis and for settling
+  fem::DynamicSettings dynamic_settings;  // for a dynamic analysis
+  std::vector<fem::PrescribedDof> prescribed;  // as given to the solid
+  std::map<long, int> node_index_of_id;        // imported meshes: file node id -> index
+};
+
+// Throws SceneError (scene_reader.hpp) naming the scene file and key path for what only the
+// built mesh reveals: a set that selects no nodes, a node id not in the mesh, a "mat_<n>" set the
+// file lacks, a node given two different prescribed displacements in one component, a load set
+// with no boundary face, a mesh that cannot be read or has an inverted element.
+BuiltScene build_scene(const Scene& scene);
+
+// Time steps of a dynamic analysis: ceil(duration / dt), the last one shortened to end exactly
+// at the duration (a remainder below 1e-9 dt is dropped as round-off).
+int time_step_count(const AnalysisSpec& analysis);
+double time_step_length(const AnalysisSpec& analysis, int step);  // step in [0, count)
+
+}  // namespace tongue::scene

@@ -1,0 +1,596 @@
+#include "scene/scene_reader.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <sstream>
+
+#include "fem/material/material_factory.hpp"
+
+namespace tongue::scene {
+
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string format_error(const std::string& file, const std::string& key_path,
+                         const std::string& reason, int line) {
+  std::string s = file + ": " + (key_path.empty() ? "" : key_path + ": ") + reason;
+  if (line > 0) s += " (line " + std::to_string(line) + ")";
+  return s;
+}
+
+// Shortest round-trip text of a number, so messages repeat exactly what was written.
+std::string format(double v) {
+  char buf[32];
+  const auto res = std::to_chars(buf, buf + sizeof buf, v);
+  return std::string(buf, res.ptr);
+}
+
+std::string join(const std::vector<std::string>& names) {
+  std::string s;
+  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
+  return s;
+}
+
+std::string child_path(const std::string& path, const std::string& key) {
+  return path.empty() ? key : path + "." + key;
+}
+std::string index_path(const std::string& path, std::size_t i) {
+  return path + "[" + std::to_string(i) + "]";
+}
+
+// An empty value (`key:` with nothing after it) counts as omitted.
+bool present(const YAML::Node& n) { return n.IsDefined() && !n.IsNull(); }
+
+const char* const kComponentNames[3] = {"x", "y", "z"};
+
+// The node sets every box mesh has (fem/mesh/box_generator.hpp, plus "all" from its element set).
+const std::vector<std::string>& box_set_names() {
+  static const std::vector<std::string> names = {"x_min", "x_max", "y_min", "y_max",
+                                                 "z_min", "z_max", "all"};
+  return names;
+}
+
+// Whether the mesh can provide a node set of this name. For an imported mesh "mat_<n>" exists
+// only when the file uses material n; the builder checks that against the mesh it reads.
+bool mesh_may_provide(const MeshSpec& mesh, const std::string& name) {
+  if (std::holds_alternative<BoxMeshSpec>(mesh)) {
+    const auto& names = box_set_names();
+    return std::find(names.begin(), names.end(), name) != names.end();
+  }
+  if (name == "all") return true;
+  if (name.size() <= 4 || name.compare(0, 4, "mat_") != 0) return false;
+  return std::all_of(name.begin() + 4, name.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// One pass over the YAML tree. Every accessor takes the node and its key path, so that each
+// error names where it is.
+class Parser {
+ public:
+  Parser(std::string source, std::string base_dir)
+      : source_(std::move(source)), base_dir_(std::move(base_dir)) {}
+
+  Scene parse(const std::string& text) {
+    YAML::Node loaded;
+    try {
+      loaded = YAML::Load(text);
+    } catch (const YAML::ParserException& e) {
+      throw SceneError(source_, "", "YAML syntax error: " + e.msg, e.mark.line + 1);
+    }
+    const YAML::Node& root = loaded;  // const access never inserts keys
+    if (!present(root)) fail("", "the scene is empty", root);
+    expect_map(root, "(top level)");
+    check_keys(root, "", {"mesh", "material", "node_sets", "constraints", "gravity", "loads",
+                          "damping", "analysis", "solver", "output"});
+    Scene scene;
+    scene.source = source_;
+    scene.text = text;
+    scene.base_dir = base_dir_;
+    read_mesh(required(root, "", "mesh"), "mesh", scene);
+    read_material(required(root, "", "material"), "material", scene.material);
+    if (const auto n = root["node_sets"]; present(n)) read_node_sets(n, "node_sets", scene);
+    if (const auto n = root["constraints"]; present(n)) read_constraints(n, "constraints", scene);
+    if (const auto n = root["gravity"]; present(n)) scene.gravity = vec3(n, "gravity");
+    if (const auto n = root["loads"]; present(n)) read_loads(n, "loads", scene);
+    if (const auto n = root["damping"]; present(n)) read_damping(n, "damping", scene.damping);
+    read_analysis(required(root, "", "analysis"), "analysis", scene.analysis);
+    if (const auto n = root["solver"]; present(n)) read_solver(n, "solver", scene.solver);
+    if (const auto n = root["output"]; present(n)) read_output(n, "output", scene.output);
+    check_set_references(root, scene);
+    return scene;
+  }
+
+ private:
+  // ---- errors and generic accessors ----
+
+  [[noreturn]] void fail(const std::string& path, const std::string& reason,
+                         const YAML::Node& at) const {
+    const int line = at.IsDefined() ? at.Mark().line + 1 : 0;
+    throw SceneError(source_, path, reason, line);
+  }
+
+  void expect_map(const YAML::Node& n, const std::string& path) const {
+    if (!n.IsMap()) fail(path, "expected a mapping of keys to values", n);
+  }
+
+  void expect_sequence(const YAML::Node& n, const std::string& path) const {
+    if (!n.IsSequence()) fail(path, "expected a list", n);
+  }
+
+  // Rejects unknown keys (listing the known ones) and keys given twice.
+  void check_keys(const YAML::Node& n, const std::string& path,
+                  const std::vector<std::string>& allowed) const {
+    std::set<std::string> seen;
+    for (auto it = n.begin(); it != n.end(); ++it) {
+      if (!it->first.IsScalar()) fail(path, "keys must be plain names", it->first);
+      const std::string key = it->first.Scalar();
+      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
+        fail(child_path(path, key), "unknown key (known: " + join(allowed) + ")", it->first);
+      if (!seen.insert(key).second) fail(child_path(path, key), "key given twice", it->first);
+    }
+  }
+
+  YAML::Node required(const YAML::Node& parent, const std::string& path,
+                      const std::string& key) const {
+    const YAML::Node n = parent[key];
+    if (!present(n)) fail(child_path(path, key), "missing required key", parent);
+    return n;
+  }
+
+  double number(const YAML::Node& n, const std::string& path) const {
+    double v = 0.0;
+    if (!n.IsScalar() || !YAML::convert<double>::decode(n, v))
+      fail(path, "expected a number, got " + describe(n), n);
+    if (!std::isfinite(v)) fail(path, "expected a finite number", n);
+    return v;
+  }
+
+  int integer(const YAML::Node& n, const std::string& path) const {
+    int v = 0;
+    if (!n.IsScalar() || !YAML::convert<int>::decode(n, v))
+      fail(path, "expected an integer, got " + describe(n), n);
+    return v;
+  }
+
+  bool boolean(const YAML::Node& n, const std::string& path) const {
+    bool v = false;
+    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, v))
+      fail(path, "expected true or false, got " + describe(n), n);
+    return v;
+  }
+
+  std::string text(const YAML::Node& n, const std::string& path) const {
+    if (!n.IsScalar()) fail(path, "expected a name, got " + describe(n), n);
+    return n.Scalar();
+  }
+
+  fem::Vec3 vec3(const YAML::Node& n, const std::string& path) const {
+    if (!n.IsSequence() || n.size() != 3) fail(path, "expected a list of 3 numbers", n);
+    fem::Vec3 v;
+    for (int i = 0; i < 3; ++i) v[i] = number(n[i], index_path(path, i));
+    return v;
+  }
+
+  double positive(const YAML::Node& n, const std::string& path, const std::string& unit) const {
+    const double v = number(n, path);
+    if (!(v > 0.0)) fail(path, "must be positive, got " + format(v) + " " + unit, n);
+    return v;
+  }
+
+  double non_negative(const YAML::Node& n, const std::string& path, const std::string& unit) const {
+    const double v = number(n, path);
+    if (v < 0.0) fail(path, "must not be negative, got " + format(v) + " " + unit, n);
+    return v;
+  }
+
+  int at_least(const YAML::Node& n, const std::string& path, int lo) const {
+    const int v = integer(n, path);
+    if (v < lo) fail(path, "must be at least " + std::to_string(lo) + ", got " + std::to_string(v), n);
+    return v;
+  }
+
+  static std::string describe(const YAML::Node& n) {
+    if (n.IsScalar()) return "'" + n.Scalar() + "'";
+    if (n.IsSequence()) return "a list";
+    if (n.IsMap()) return "a mapping";
+    return "nothing";
+  }
+
+  // ---- sections ----
+
+  void read_mesh(const YAML::Node& n, const std::string& path, Scene& scene) const {
+    expect_map(n, path);
+    check_keys(n, path, {"box", "ansys"});
+    const YAML::Node box = n["box"], ansys = n["ansys"];
+    if (present(box) && present(ansys)) fail(path, "give either 'box' or 'ansys', not both", n);
+    if (present(box)) {
+      scene.mesh = read_box(box, child_path(path, "box"));
+    } else if (present(ansys)) {
+      scene.mesh = read_ansys(ansys, child_path(path, "ansys"));
+    } else {
+      fail(path, "give one of 'box' or 'ansys'", n);
+    }
+  }
+
+  BoxMeshSpec read_box(const YAML::Node& n, const std::string& path) const {
+    expect_map(n, path);
+    check_keys(n, path, {"origin", "size", "divisions"});
+    BoxMeshSpec box;
+    if (const auto o = n["origin"]; present(o)) box.origin = vec3(o, child_path(path, "origin"));
+    const std::string size_path = child_path(path, "size");
+    const YAML::Node size = required(n, path, "size");
+    box.size = vec3(size, size_path);
+    for (int i = 0; i < 3; ++i)
+      if (!(box.size[i] > 0.0))
+        fail(index_path(size_path, i), "must be positive, got " + format(box.size[i]) + " m", size);
+    const std::string div_path = child_path(path, "divisions");
+    const YAML::Node div = required(n, path, "divisions");
+    if (!div.IsSequence() || div.size() != 3) fail(div_path, "expected a list of 3 integers", div);
+    for (int i = 0; i < 3; ++i) box.divisions[i] = at_least(div[i], index_path(div_path, i), 1);
+    return box;
+  }
+
+  AnsysMeshSpec read_ansys(const YAML::Node& n, const std::string& path) const {
+    expect_map(n, path);
+    check_keys(n, path, {"nodes", "elements", "length_scale"});
+    AnsysMeshSpec ansys;
+    ansys.nodes_path = mesh_file(required(n, path, "nodes"), child_path(path, "nodes"));
+    ansys.elements_path = mesh_file(required(n, path, "elements"), child_path(path, "elements"));
+    if (const auto s = n["length_scale"]; present(s))
+      ansys.length_scale = positive(s, child_path(path, "length_scale"), "m");
+    return ansys;
+  }
+
+  // The path resolved against the scene's directory; it must name an existing file.
+  std::string mesh_file(const YAML::Node& n, const std::string& path) const {
+    fs::path p = text(n, path);
+    if (p.is_relative() && !base_dir_.empty()) p = fs::path(base_dir_) / p;
+    std::error_code ec;
+    if (!fs::is_regular_file(p, ec)) fail(path, "mesh file not found: " + p.string(), n);
+    return p.string();
+  }
+
+  void read_material(const YAML::Node& n, const std::string& path, MaterialSpec& m) const {
+    expect_map(n, path);
+    check_keys(n, path, {"type", "parameters", "density", "formulation"});
+    const std::string type_path = child_path(path, "type");
+    const YAML::Node type = required(n, path, "type");
+    m.type = text(type, type_path);
+    const auto types = fem::material_types();
+    if (std::find(types.begin(), types.end(), m.type) == types.end())
+      fail(type_path, "unknown material type '" + m.type + "' (known: " + join(types) + ")", type);
+    const std::vector<fem::ParameterSpec>& specs = fem::material_parameters(m.type);
+
+    const std::string params_path = child_path(path, "parameters");
+    const YAML::Node params = n["parameters"];
+    if (present(params)) {
+      expect_map(params, params_path);
+      std::vector<std::string> known;
+      for (const auto& s : specs) known.push_back(s.name);
+      check_keys(params, params_path, known);
+      for (auto it = params.begin(); it != params.end(); ++it) {
+        const std::string key = it->first.Scalar();
+        const std::string key_path = child_path(params_path, key);
+        const double v = number(it->second, key_path);
+        const auto spec = std::find_if(specs.begin(), specs.end(),
+                                       [&](const fem::ParameterSpec& s) { return s.name == key; });
+        if (!spec->in_range(v))
+          fail(key_path,
+               format(v) + " " + spec->unit + " is out of range (" + format(spec->min) + ", " +
+                   format(spec->max) + "): " + spec->help,
+               it->second);
+        m.parameters[key] = v;
+      }
+    }
+    if (const auto d = n["density"]; present(d))
+      m.density = positive(d, child_path(path, "density"), "kg/m^3");
+
+    // The factory's remaining checks (conflicting pairs, mu0 > 0, required parameters).
+    bool split = false;
+    try {
+      split = fem::make_material(m.type, m.parameters)->as_uncoupled() != nullptr;
+    } catch (const std::invalid_argument& e) {
+      fail(params_path, e.what(), present(params) ? params : n);
+    }
+    // Mean dilatation needs the isochoric/volumetric split; without it only standard works.
+    m.formulation = split ? fem::Formulation::mean_dilatation : fem::Formulation::standard;
+    const std::string form_path = child_path(path, "formulation");
+    if (const auto f = n["formulation"]; present(f)) {
+      const std::string name = text(f, form_path);
+      if (name == "standard") {
+        m.formulation = fem::Formulation::standard;
+      } else if (name == "mean_dilatation") {
+        if (!split)
+          fail(form_path,
+               "material '" + m.type +
+                   "' has no isochoric/volumetric split; use formulation 'standard'",
+               f);
+        m.formulation = fem::Formulation::mean_dilatation;
+      } else {
+        fail(form_path, "unknown formulation '" + name + "' (known: mean_dilatation, standard)",
+             f);
+      }
+    }
+  }
+
+  void read_node_sets(const YAML::Node& n, const std::string& path, Scene& scene) const {
+    expect_map(n, path);
+    std::set<std::string> seen;
+    for (auto it = n.begin(); it != n.end(); ++it) {
+      const std::string name = text(it->first, path);
+      const std::string set_path = child_path(path, name);
+      if (!seen.insert(name).second) fail(set_path, "set defined twice", it->first);
+      if (mesh_may_provide(scene.mesh, name))
+        fail(set_path, "name is already taken by a node set of the mesh", it->first);
+      const YAML::Node def = it->second;
+      if (!present(def)) fail(set_path, "expected one of 'box', 'ids', 'union'", it->first);
+      expect_map(def, set_path);
+      check_keys(def, set_path, {"box", "ids", "union"});
+      if (def.size() != 1) fail(set_path, "give exactly one of 'box', 'ids', 'union'", def);
+      NodeSetSpec spec;
+      spec.name = name;
+      if (const auto box = def["box"]; present(box)) {
+        const std::string box_path = child_path(set_path, "box");
+        expect_map(box, box_path);
+        check_keys(box, box_path, {"min", "max"});
+        spec.kind = NodeSetSpec::Kind::box;
+        spec.box_min = vec3(required(box, box_path, "min"), child_path(box_path, "min"));
+        spec.box_max = vec3(required(box, box_path, "max"), child_path(box_path, "max"));
+        if ((spec.box_min.array() > spec.box_max.array()).any())
+          fail(box_path, "'min' must not exceed 'max' in any component", box);
+      } else if (const auto ids = def["ids"]; present(ids)) {
+        const std::string ids_path = child_path(set_path, "ids");
+        expect_sequence(ids, ids_path);
+        if (ids.size() == 0) fail(ids_path, "the set is empty", ids);
+        spec.kind = NodeSetSpec::Kind::ids;
+        for (std::size_t i = 0; i < ids.size(); ++i)
+          spec.ids.push_back(at_least(ids[i], index_path(ids_path, i), 0));
+      } else if (const auto members = def["union"]; present(members)) {
+        const std::string union_path = child_path(set_path, "union");
+        expect_sequence(members, union_path);
+        if (members.size() == 0) fail(union_path, "the set is empty", members);
+        spec.kind = NodeSetSpec::Kind::set_union;
+        for (std::size_t i = 0; i < members.size(); ++i)
+          spec.members.push_back(text(members[i], index_path(union_path, i)));
+      } else {
+        fail(set_path, "give exactly one of 'box', 'ids', 'union'", def);
+      }
+      scene.node_sets.push_back(std::move(spec));
+    }
+  }
+
+  void read_constraints(const YAML::Node& n, const std::string& path, Scene& scene) const {
+    expect_sequence(n, path);
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      const YAML::Node c = n[i];
+      const std::string c_path = index_path(path, i);
+      expect_map(c, c_path);
+      check_keys(c, c_path, {"set", "components", "displacement"});
+      ConstraintSpec spec;
+      spec.set = text(required(c, c_path, "set"), child_path(c_path, "set"));
+      const std::string comp_path = child_path(c_path, "components");
+      const YAML::Node comps = required(c, c_path, "components");
+      expect_sequence(comps, comp_path);
+      if (comps.size() == 0) fail(comp_path, "list at least one of x, y, z", comps);
+      for (std::size_t k = 0; k < comps.size(); ++k) {
+        const std::string k_path = index_path(comp_path, k);
+        const std::string letter = text(comps[k], k_path);
+        const auto* end = std::end(kComponentNames);
+        const auto* found = std::find(std::begin(kComponentNames), end, letter);
+        if (found == end) fail(k_path, "unknown component '" + letter + "' (known: x, y, z)", comps[k]);
+        const int component = static_cast<int>(found - std::begin(kComponentNames));
+        if (std::find(spec.components.begin(), spec.components.end(), component) !=
+            spec.components.end())
+          fail(k_path, "component '" + letter + "' listed twice", comps[k]);
+        spec.components.push_back(component);
+      }
+      spec.displacements.assign(spec.components.size(), 0.0);
+      const std::string disp_path = child_path(c_path, "displacement");
+      if (const auto d = c["displacement"]; present(d)) {
+        if (d.IsSequence()) {
+          if (d.size() != spec.components.size())
+            fail(disp_path,
+                 "expected one number or one per component (" +
+                     std::to_string(spec.components.size()) + ")",
+                 d);
+          for (std::size_t k = 0; k < d.size(); ++k)
+            spec.displacements[k] = number(d[k], index_path(disp_path, k));
+        } else {
+          spec.displacements.assign(spec.components.size(), number(d, disp_path));
+        }
+      }
+      scene.constraints.push_back(std::move(spec));
+    }
+  }
+
+  void read_loads(const YAML::Node& n, const std::string& path, Scene& scene) const {
+    expect_sequence(n, path);
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      const YAML::Node l = n[i];
+      const std::string l_path = index_path(path, i);
+      expect_map(l, l_path);
+      check_keys(l, l_path, {"set", "total_force"});
+      SurfaceLoadSpec spec;
+      spec.set = text(required(l, l_path, "set"), child_path(l_path, "set"));
+      spec.total_force =
+          vec3(required(l, l_path, "total_force"), child_path(l_path, "total_force"));
+      scene.loads.push_back(std::move(spec));
+    }
+  }
+
+  void read_damping(const YAML::Node& n, const std::string& path, fem::RayleighDamping& d) const {
+    expect_map(n, path);
+    check_keys(n, path, {"alpha", "beta"});
+    if (const auto a = n["alpha"]; present(a))
+      d.mass_coefficient = non_negative(a, child_path(path, "alpha"), "1/s");
+    if (const auto b = n["beta"]; present(b))
+      d.stiffness_coefficient = non_negative(b, child_path(path, "beta"), "s");
+  }
+
+  void read_analysis(const YAML::Node& n, const std::string& path, AnalysisSpec& a) const {
+    expect_map(n, path);
+    check_keys(n, path,
+               {"type", "settle", "duration", "dt", "load_steps", "newmark", "lumped_mass",
+                "max_cuts"});
+    const std::string type_path = child_path(path, "type");
+    const YAML::Node type = required(n, path, "type");
+    const std::string name = text(type, type_path);
+    if (name == "static") {
+      a.type = AnalysisType::static_equilibrium;
+    } else if (name == "dynamic") {
+      a.type = AnalysisType::dynamic;
+    } else {
+      fail(type_path, "unknown analysis type '" + name + "' (known: static, dynamic)", type);
+    }
+    const bool dynamic = a.type == AnalysisType::dynamic;
+    if (const auto s = n["settle"]; present(s)) a.settle = boolean(s, child_path(path, "settle"));
+    const YAML::Node duration = dynamic ? required(n, path, "duration") : n["duration"];
+    if (present(duration)) a.duration = positive(duration, child_path(path, "duration"), "s");
+    const YAML::Node dt = dynamic ? required(n, path, "dt") : n["dt"];
+    if (present(dt)) {
+      a.dt = positive(dt, child_path(path, "dt"), "s");
+      // A step longer than the run is almost surely a unit slip (ms for s).
+      if (present(duration) && a.dt > a.duration * (1.0 + 1e-12))
+        fail(child_path(path, "dt"),
+             format(a.dt) + " s is longer than the duration " + format(a.duration) + " s", dt);
+    }
+    if (const auto s = n["load_steps"]; present(s))
+      a.load_steps = at_least(s, child_path(path, "load_steps"), 1);
+    if (const auto nm = n["newmark"]; present(nm)) {
+      const std::string nm_path = child_path(path, "newmark");
+      expect_map(nm, nm_path);
+      check_keys(nm, nm_path, {"beta", "gamma"});
+      if (const auto b = nm["beta"]; present(b))
+        a.newmark.beta = positive(b, child_path(nm_path, "beta"), "");
+      if (const auto g = nm["gamma"]; present(g)) {
+        a.newmark.gamma = number(g, child_path(nm_path, "gamma"));
+        // gamma < 1/2 adds negative numerical damping: the scheme grows without bound.
+        if (a.newmark.gamma < 0.5)
+          fail(child_path(nm_path, "gamma"), "must be at least 0.5, got " + format(a.newmark.gamma),
+               g);
+      }
+    }
+    if (const auto l = n["lumped_mass"]; present(l))
+      a.lumped_mass = boolean(l, child_path(path, "lumped_mass"));
+    if (const auto c = n["max_cuts"]; present(c)) {
+      a.max_cuts = at_least(c, child_path(path, "max_cuts"), 0);
+      // 2^30 substeps would take forever; more cuts than this only hide a broken scene.
+      if (a.max_cuts > 30) fail(child_path(path, "max_cuts"), "must be at most 30", c);
+    }
+  }
+
+  void read_solver(const YAML::Node& n, const std::string& path, fem::NewtonSettings& s) const {
+    expect_map(n, path);
+    check_keys(n, path,
+               {"residual_rtol", "residual_atol", "increment_rtol", "increment_atol",
+                "max_iterations", "line_search", "max_tangent_reuse", "reform_ratio"});
+    const auto get = [&](const char* key, auto&& read) {
+      if (const auto v = n[key]; present(v)) read(v, child_path(path, key));
+    };
+    get("residual_rtol", [&](auto v, auto p) { s.residual_rtol = non_negative(v, p, ""); });
+    get("residual_atol", [&](auto v, auto p) { s.residual_atol = non_negative(v, p, "N"); });
+    get("increment_rtol", [&](auto v, auto p) { s.increment_rtol = non_negative(v, p, ""); });
+    get("increment_atol", [&](auto v, auto p) { s.increment_atol = non_negative(v, p, "m"); });
+    get("max_iterations", [&](auto v, auto p) { s.max_iterations = at_least(v, p, 1); });
+    get("line_search", [&](auto v, auto p) { s.line_search = boolean(v, p); });
+    get("max_tangent_reuse", [&](auto v, auto p) { s.max_tangent_reuse = at_least(v, p, 0); });
+    get("reform_ratio", [&](auto v, auto p) {
+      s.reform_ratio = positive(v, p, "");
+      if (s.reform_ratio > 1.0) fail(p, "must not exceed 1, got " + format(s.reform_ratio), v);
+    });
+  }
+
+  void read_output(const YAML::Node& n, const std::string& path, OutputSpec& o) const {
+    expect_map(n, path);
+    check_keys(n, path, {"file", "every"});
+    if (const auto f = n["file"]; present(f)) o.file = text(f, child_path(path, "file"));
+    if (const auto e = n["every"]; present(e)) o.every = at_least(e, child_path(path, "every"), 1);
+  }
+
+  // Every set named by a union, constraint or load exists, and unions do not refer to
+  // themselves. Names the mesh may provide are checked against the real mesh by the builder.
+  void check_set_references(const YAML::Node& root, const Scene& scene) const {
+    std::map<std::string, const NodeSetSpec*> defined;
+    for (const auto& s : scene.node_sets) defined[s.name] = &s;
+    const auto known = [&](const std::string& name) {
+      return defined.count(name) != 0 || mesh_may_provide(scene.mesh, name);
+    };
+    const auto unknown = [&](const std::string& name) {
+      std::vector<std::string> names;
+      if (std::holds_alternative<BoxMeshSpec>(scene.mesh)) names = box_set_names();
+      else names = {"all", "mat_<n>"};
+      for (const auto& s : scene.node_sets) names.push_back(s.name);
+      return "unknown node set '" + name + "' (known: " + join(names) + ")";
+    };
+
+    const YAML::Node sets = root["node_sets"];
+    for (const auto& s : scene.node_sets) {
+      for (std::size_t i = 0; i < s.members.size(); ++i) {
+        if (!known(s.members[i])) {
+          const YAML::Node at = sets[s.name]["union"][i];
+          fail(index_path("node_sets." + s.name + ".union", i), unknown(s.members[i]), at);
+        }
+      }
+    }
+    // Depth-first search for a union that contains itself.
+    std::map<std::string, int> state;  // 1: on the current path, 2: done
+    std::function<void(const NodeSetSpec&)> visit = [&](const NodeSetSpec& s) {
+      state[s.name] = 1;
+      for (const auto& m : s.members) {
+        const auto it = defined.find(m);
+        if (it == defined.end()) continue;
+        if (state[m] == 1)
+          fail("node_sets." + s.name + ".union", "the union refers back to itself through '" + m + "'",
+               sets[s.name]);
+        if (state[m] == 0) visit(*it->second);
+      }
+      state[s.name] = 2;
+    };
+    for (const auto& s : scene.node_sets)
+      if (state[s.name] == 0) visit(s);
+
+    for (std::size_t i = 0; i < scene.constraints.size(); ++i)
+      if (!known(scene.constraints[i].set))
+        fail(index_path("constraints", i) + ".set", unknown(scene.constraints[i].set),
+             root["constraints"][i]["set"]);
+    for (std::size_t i = 0; i < scene.loads.size(); ++i)
+      if (!known(scene.loads[i].set))
+        fail(index_path("loads", i) + ".set", unknown(scene.loads[i].set), root["loads"][i]["set"]);
+  }
+
+  std::string source_;
+  std::string base_dir_;
+};
+
+}  // namespace
+
+SceneError::SceneError(const std::string& file, const std::string& key_path,
+                       const std::string& reason, int line)
+    : std::runtime_error(format_error(file, key_path, reason, line)),
+      file_(file),
+      key_path_(key_path),
+      reason_(reason),
+      line_(line) {}
+
+Scene read_scene(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw SceneError(path, "", "cannot open the scene file");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (in.bad()) throw SceneError(path, "", "cannot read the scene file");
+  return parse_scene(text.str(), fs::path(path).parent_path().string(), path);
+}
+
+Scene parse_scene(const std::string& yaml_text, const std::string& base_dir,
+                  const std::string& source_name) {
+  return Parser(source_name, base_dir).parse(yaml_text);
+}
+
+}  // namespace tongue::scene
