@@ -539,18 +539,24 @@ class Parser {
         }
       }
     }
-    // Depth-first search for a union that contains itself.
+    // Depth-first search for a union that contains itself; the message spells out the cycle.
     std::map<std::string, int> state;  // 1: on the current path, 2: done
+    std::vector<std::string> stack;
     std::function<void(const NodeSetSpec&)> visit = [&](const NodeSetSpec& s) {
       state[s.name] = 1;
+      stack.push_back(s.name);
       for (const auto& m : s.members) {
         const auto it = defined.find(m);
         if (it == defined.end()) continue;
-        if (state[m] == 1)
-          fail("node_sets." + s.name + ".union", "the union refers back to itself through '" + m + "'",
-               sets[s.name]);
+        if (state[m] == 1) {
+          std::string cycle;
+          for (auto n = std::find(stack.begin(), stack.end(), m); n != stack.end(); ++n)
+            cycle += *n + " -> ";
+          fail("node_sets." + m + ".union", "the unions form a cycle: " + cycle + m, sets[m]);
+        }
         if (state[m] == 0) visit(*it->second);
       }
+      stack.pop_back();
       state[s.name] = 2;
     };
     for (const auto& s : scene.node_sets)
