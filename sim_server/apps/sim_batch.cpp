@@ -32,7 +32,9 @@ constexpr int kExitNotConverged = 2;
 constexpr int kExitInterrupted = 130;
 
 volatile std::sig_atomic_t g_interrupted = 0;
-extern "C" void on_interrupt(int) { g_interrupted = 1; }
+extern "C" void on_interrupt(int) {
+  g_interrupted = 1;
+}
 
 struct Options {
   std::string scene_path;
@@ -113,10 +115,11 @@ class BatchRun {
       log_->set_attribute("analysis", is_dynamic() ? "dynamic" : "static");
       log_->set_attribute("status", "running");
     }
-    std::printf("%s: %d nodes, %d hex8, %d free dofs, mass %.4g kg, volume %.4g cm^3, %s analysis\n",
-                scene_.source.c_str(), solid.mesh().num_nodes(), solid.mesh().num_elements(),
-                solid.dofs().num_free(), solid.total_mass(), solid.reference_volume() * 1e6,
-                is_dynamic() ? "dynamic" : "static");
+    std::printf(
+        "%s: %d nodes, %d hex8, %d free dofs, mass %.4g kg, volume %.4g cm^3, %s analysis\n",
+        scene_.source.c_str(), solid.mesh().num_nodes(), solid.mesh().num_elements(),
+        solid.dofs().num_free(), solid.total_mass(), solid.reference_volume() * 1e6,
+        is_dynamic() ? "dynamic" : "static");
     if (log_) {
       std::printf("run file: %s\n", output.c_str());
     } else {
@@ -126,13 +129,21 @@ class BatchRun {
 
   int run() {
     const auto start = std::chrono::steady_clock::now();
-    const int status = is_dynamic() ? run_dynamic() : run_static();
+    int status = kExitError;
+    try {
+      status = is_dynamic() ? run_dynamic() : run_static();
+    } catch (const std::exception& e) {
+      // E.g. an inverted element in the initial state, or a run file that cannot be written:
+      // mark the file, which keeps the frames written so far.
+      failure_ = e.what();
+      std::fprintf(stderr, "sim_batch: error: %s\n", e.what());
+    }
     wall_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     summary(status);
     if (log_) {
-      log_->set_attribute("status", status == kExitOk                ? "completed"
-                                    : status == kExitInterrupted     ? "interrupted"
-                                                                     : "failed: " + failure_);
+      log_->set_attribute("status", status == kExitOk            ? "completed"
+                                    : status == kExitInterrupted ? "interrupted"
+                                                                 : "failed: " + failure_);
       log_->flush();
     }
     return status;
@@ -176,9 +187,9 @@ class BatchRun {
       const fem::StaticReport report = fem::solve_static(*built_.system, u, built_.static_settings);
       for (const fem::StepReport& inc : report.increments) settle.add(inc);
       if (!quiet_)
-        std::printf("settle: %d increments, %d iterations, %d cuts, residual %.3e N, wall %.1f ms\n",
-                    settle.steps, settle.iterations, settle.cuts, settle.residual,
-                    settle.wall * 1e3);
+        std::printf(
+            "settle: %d increments, %d iterations, %d cuts, residual %.3e N, wall %.1f ms\n",
+            settle.steps, settle.iterations, settle.cuts, settle.residual, settle.wall * 1e3);
       total_.iterations += settle.iterations;
       total_.cuts += settle.cuts;
       if (!report.converged) {
@@ -212,7 +223,8 @@ class BatchRun {
       step_line(s + 1, r.time, r);
       if (!r.converged) {
         failure_ = r.message;
-        std::fprintf(stderr, "sim_batch: step %d (from t = %.6g s, dt = %.6g s) failed to converge: %s\n",
+        std::fprintf(stderr,
+                     "sim_batch: step %d (from t = %.6g s, dt = %.6g s) failed to converge: %s\n",
                      s + 1, t0, r.dt, r.message.c_str());
         return kExitNotConverged;
       }
@@ -256,18 +268,22 @@ class BatchRun {
 
   void summary(int status) const {
     std::printf("summary: %s, %d %s, %d cuts, %d Newton iterations, wall %.3f s",
-                status == kExitOk ? "completed" : status == kExitInterrupted ? "interrupted" : "FAILED",
+                status == kExitOk            ? "completed"
+                : status == kExitInterrupted ? "interrupted"
+                                             : "FAILED",
                 total_.steps, is_dynamic() ? "steps" : "increments", total_.cuts, total_.iterations,
                 wall_);
     if (is_dynamic()) {
       std::printf(", simulated %.4g s, real-time factor %.3g", simulated_,
                   wall_ > 0.0 ? simulated_ / wall_ : 0.0);
     }
-    std::printf("\n         max displacement %.4g mm (last %.4g mm), volume change %+.4f %% "
-                "(largest |change| %.4f %%)\n",
-                max_displacement_ * 1e3, final_displacement_ * 1e3, volume_change_ * 100.0,
-                max_volume_change_ * 100.0);
-    if (log_) std::printf("         run file %s: %d frames\n", log_->path().c_str(), log_->frames());
+    std::printf(
+        "\n         max displacement %.4g mm (last %.4g mm), volume change %+.4f %% "
+        "(largest |change| %.4f %%)\n",
+        max_displacement_ * 1e3, final_displacement_ * 1e3, volume_change_ * 100.0,
+        max_volume_change_ * 100.0);
+    if (log_)
+      std::printf("         run file %s: %d frames\n", log_->path().c_str(), log_->frames());
   }
 
   const scene::Scene& scene_;
@@ -306,4 +322,6 @@ int run(int argc, char** argv) {
 }  // namespace
 }  // namespace tongue::apps
 
-int main(int argc, char** argv) { return tongue::apps::run(argc, argv); }
+int main(int argc, char** argv) {
+  return tongue::apps::run(argc, argv);
+}

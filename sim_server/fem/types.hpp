@@ -15,8 +15,12 @@ using Vec9 = Eigen::Matrix<double, 9, 1>;
 // A fourth-order tensor A_{iJkL} = d2W / dF_iJ dF_kL as a 9x9 matrix on that flattening.
 using Mat9 = Eigen::Matrix<double, 9, 9>;
 
-constexpr int flat_index(int i, int J) { return i + 3 * J; }
+constexpr int flat_index(int i, int J) {
+  return i + 3 * J;
+}
 
-inline Eigen::Map<const Vec9> flatten(const Mat3& m) { return Eigen::Map<const Vec9>(m.data()); }
+inline Eigen::Map<const Vec9> flatten(const Mat3& m) {
+  return Eigen::Map<const Vec9>(m.data());
+}
 
 }  // namespace tongue::fem

@@ -162,8 +162,8 @@ class Writer {
     check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
                               nullptr),
           "select a frame of " + name);
-    const Id mem = check(H5Screate_simple(rank, count.data(), nullptr), H5Sclose,
-                         "create a memory dataspace");
+    const Id mem =
+        check(H5Screate_simple(rank, count.data(), nullptr), H5Sclose, "create a memory dataspace");
     check(H5Dwrite(ds, mem_type, mem.get(), space.get(), H5P_DEFAULT, data), "write " + name);
   }
 
@@ -196,8 +196,9 @@ PositionLog::PositionLog(const std::string& path, const fem::Mesh& mesh,
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();
   std::error_code ec;
   if (!parent.empty()) std::filesystem::create_directories(parent, ec);
-  if (ec) throw PositionLogError(path + ": cannot create directory " + parent.string() + ": " +
-                                 ec.message());
+  if (ec)
+    throw PositionLogError(path + ": cannot create directory " + parent.string() + ": " +
+                           ec.message());
 
   const QuietErrors quiet;
   const Writer w(path);
@@ -229,14 +230,13 @@ PositionLog::PositionLog(const std::string& path, const fem::Mesh& mesh,
   const hsize_t chunk_frames = std::clamp<hsize_t>(65536 / frame_bytes, 1, 64);
   const hsize_t scalar_chunk = 1024;
   const int z = options.deflate_level;
-  h_->time = w.series(file, "time", H5T_IEEE_F64LE, {}, scalar_chunk, z, options.time_unit,
-                      options.time_unit == "s" ? "simulated time of each frame"
-                                               : "load factor of each frame");
+  h_->time = w.series(
+      file, "time", H5T_IEEE_F64LE, {}, scalar_chunk, z, options.time_unit,
+      options.time_unit == "s" ? "simulated time of each frame" : "load factor of each frame");
   h_->positions = w.series(file, "positions", H5T_IEEE_F64LE, {n, 3}, chunk_frames, z, "m",
                            "current node positions of each frame");
-  const Id solver =
-      w.check(H5Gcreate2(file, "solver", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
-              "create group solver");
+  const Id solver = w.check(H5Gcreate2(file, "solver", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                            H5Gclose, "create group solver");
   h_->iterations = w.series(solver.get(), "iterations", H5T_STD_I32LE, {}, scalar_chunk, z, "1",
                             "Newton iterations since the previous frame, over all substeps");
   h_->residual = w.series(solver.get(), "residual", H5T_IEEE_F64LE, {}, scalar_chunk, z, "N",

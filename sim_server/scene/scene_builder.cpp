@@ -41,7 +41,8 @@ class Builder {
     try {
       material = fem::make_material(scene_.material.type, scene_.material.parameters);
     } catch (const std::invalid_argument& e) {
-      fail("material.parameters", e.what());  // the reader checks this too; kept for hand-made scenes
+      fail("material.parameters",
+           e.what());  // the reader checks this too; kept for hand-made scenes
     }
     try {
       built.solid = std::make_shared<const fem::SolidModel>(
@@ -53,8 +54,8 @@ class Builder {
 
     built.system = std::make_unique<fem::MechanicalSystem>(built.solid);
     if (scene_.gravity) {
-      built.system->add_load(
-          std::make_shared<fem::ConstantForce>("gravity", built.solid->body_force(*scene_.gravity)));
+      built.system->add_load(std::make_shared<fem::ConstantForce>(
+          "gravity", built.solid->body_force(*scene_.gravity)));
     }
     for (std::size_t i = 0; i < scene_.loads.size(); ++i) {
       const SurfaceLoadSpec& load = scene_.loads[i];
@@ -159,7 +160,8 @@ class Builder {
               nodes.push_back(it->second);
             } else {
               if (s.ids[i] >= mesh.num_nodes())
-                fail(id_path, "node index " + std::to_string(s.ids[i]) + " out of range: the mesh has " +
+                fail(id_path, "node index " + std::to_string(s.ids[i]) +
+                                  " out of range: the mesh has " +
                                   std::to_string(mesh.num_nodes()) + " nodes (0-based)");
               nodes.push_back(static_cast<int>(s.ids[i]));
             }
@@ -181,8 +183,7 @@ class Builder {
     for (const auto& s : scene_.node_sets) resolve(s.name, "node_sets." + s.name, 0);
     // Sets named by constraints and loads must exist now (e.g. "mat_7" of an imported mesh).
     for (std::size_t i = 0; i < scene_.constraints.size(); ++i)
-      check_exists(mesh, scene_.constraints[i].set,
-                   "constraints[" + std::to_string(i) + "].set");
+      check_exists(mesh, scene_.constraints[i].set, "constraints[" + std::to_string(i) + "].set");
     for (std::size_t i = 0; i < scene_.loads.size(); ++i)
       check_exists(mesh, scene_.loads[i].set, "loads[" + std::to_string(i) + "].set");
   }
@@ -239,7 +240,9 @@ class Builder {
 
 }  // namespace
 
-BuiltScene build_scene(const Scene& scene) { return Builder(scene).build(); }
+BuiltScene build_scene(const Scene& scene) {
+  return Builder(scene).build();
+}
 
 int time_step_count(const AnalysisSpec& analysis) {
   if (!(analysis.dt > 0.0) || !(analysis.duration > 0.0)) return 0;

@@ -19,8 +19,8 @@ struct BuiltScene {
   std::shared_ptr<const fem::SolidModel> solid;
   // Loads: "gravity" when the scene has gravity, then one per entry of `loads`, in that order.
   std::unique_ptr<fem::MechanicalSystem> system;
-  fem::StaticSettings static_settings;    // for a static analysis and for settling
-  fem::DynamicSettings dynamic_settings;  // for a dynamic analysis
+  fem::StaticSettings static_settings;         // for a static analysis and for settling
+  fem::DynamicSettings dynamic_settings;       // for a dynamic analysis
   std::vector<fem::PrescribedDof> prescribed;  // as given to the solid
   std::map<long, int> node_index_of_id;        // imported meshes: file node id -> index
 };

@@ -47,7 +47,9 @@ std::string index_path(const std::string& path, std::size_t i) {
 }
 
 // An empty value (`key:` with nothing after it) counts as omitted.
-bool present(const YAML::Node& n) { return n.IsDefined() && !n.IsNull(); }
+bool present(const YAML::Node& n) {
+  return n.IsDefined() && !n.IsNull();
+}
 
 const char* const kComponentNames[3] = {"x", "y", "z"};
 
@@ -87,8 +89,9 @@ class Parser {
     const YAML::Node& root = loaded;  // const access never inserts keys
     if (!present(root)) fail("", "the scene is empty", root);
     expect_map(root, "(top level)");
-    check_keys(root, "", {"mesh", "material", "node_sets", "constraints", "gravity", "loads",
-                          "damping", "analysis", "solver", "output"});
+    check_keys(root, "",
+               {"mesh", "material", "node_sets", "constraints", "gravity", "loads", "damping",
+                "analysis", "solver", "output"});
     Scene scene;
     scene.source = source_;
     scene.text = text;
@@ -126,14 +129,15 @@ class Parser {
 
   // Rejects unknown keys (listing the known ones) and keys given twice.
   void check_keys(const YAML::Node& n, const std::string& path,
-                  const std::vector<std::string>& allowed) const {
+                  const std::vector<std::string>& allowed, const std::string& noun = "key") const {
     std::set<std::string> seen;
     for (auto it = n.begin(); it != n.end(); ++it) {
       if (!it->first.IsScalar()) fail(path, "keys must be plain names", it->first);
       const std::string key = it->first.Scalar();
       if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
-        fail(child_path(path, key), "unknown key (known: " + join(allowed) + ")", it->first);
-      if (!seen.insert(key).second) fail(child_path(path, key), "key given twice", it->first);
+        fail(child_path(path, key), "unknown " + noun + " (known: " + join(allowed) + ")",
+             it->first);
+      if (!seen.insert(key).second) fail(child_path(path, key), noun + " given twice", it->first);
     }
   }
 
@@ -180,19 +184,22 @@ class Parser {
 
   double positive(const YAML::Node& n, const std::string& path, const std::string& unit) const {
     const double v = number(n, path);
-    if (!(v > 0.0)) fail(path, "must be positive, got " + format(v) + " " + unit, n);
+    if (!(v > 0.0))
+      fail(path, "must be positive, got " + format(v) + (unit.empty() ? "" : " " + unit), n);
     return v;
   }
 
   double non_negative(const YAML::Node& n, const std::string& path, const std::string& unit) const {
     const double v = number(n, path);
-    if (v < 0.0) fail(path, "must not be negative, got " + format(v) + " " + unit, n);
+    if (v < 0.0)
+      fail(path, "must not be negative, got " + format(v) + (unit.empty() ? "" : " " + unit), n);
     return v;
   }
 
   int at_least(const YAML::Node& n, const std::string& path, int lo) const {
     const int v = integer(n, path);
-    if (v < lo) fail(path, "must be at least " + std::to_string(lo) + ", got " + std::to_string(v), n);
+    if (v < lo)
+      fail(path, "must be at least " + std::to_string(lo) + ", got " + std::to_string(v), n);
     return v;
   }
 
@@ -274,7 +281,7 @@ class Parser {
       expect_map(params, params_path);
       std::vector<std::string> known;
       for (const auto& s : specs) known.push_back(s.name);
-      check_keys(params, params_path, known);
+      check_keys(params, params_path, known, "parameter of material '" + m.type + "'");
       for (auto it = params.begin(); it != params.end(); ++it) {
         const std::string key = it->first.Scalar();
         const std::string key_path = child_path(params_path, key);
@@ -283,8 +290,8 @@ class Parser {
                                        [&](const fem::ParameterSpec& s) { return s.name == key; });
         if (!spec->in_range(v))
           fail(key_path,
-               format(v) + " " + spec->unit + " is out of range (" + format(spec->min) + ", " +
-                   format(spec->max) + "): " + spec->help,
+               format(v) + (spec->unit == "1" ? "" : " " + spec->unit) + " is out of range (" +
+                   format(spec->min) + ", " + format(spec->max) + "): " + spec->help,
                it->second);
         m.parameters[key] = v;
       }
@@ -314,8 +321,7 @@ class Parser {
                f);
         m.formulation = fem::Formulation::mean_dilatation;
       } else {
-        fail(form_path, "unknown formulation '" + name + "' (known: mean_dilatation, standard)",
-             f);
+        fail(form_path, "unknown formulation '" + name + "' (known: mean_dilatation, standard)", f);
       }
     }
   }
@@ -384,7 +390,8 @@ class Parser {
         const std::string letter = text(comps[k], k_path);
         const auto* end = std::end(kComponentNames);
         const auto* found = std::find(std::begin(kComponentNames), end, letter);
-        if (found == end) fail(k_path, "unknown component '" + letter + "' (known: x, y, z)", comps[k]);
+        if (found == end)
+          fail(k_path, "unknown component '" + letter + "' (known: x, y, z)", comps[k]);
         const int component = static_cast<int>(found - std::begin(kComponentNames));
         if (std::find(spec.components.begin(), spec.components.end(), component) !=
             spec.components.end())
@@ -436,9 +443,9 @@ class Parser {
 
   void read_analysis(const YAML::Node& n, const std::string& path, AnalysisSpec& a) const {
     expect_map(n, path);
-    check_keys(n, path,
-               {"type", "settle", "duration", "dt", "load_steps", "newmark", "lumped_mass",
-                "max_cuts"});
+    check_keys(
+        n, path,
+        {"type", "settle", "duration", "dt", "load_steps", "newmark", "lumped_mass", "max_cuts"});
     const std::string type_path = child_path(path, "type");
     const YAML::Node type = required(n, path, "type");
     const std::string name = text(type, type_path);
@@ -524,8 +531,10 @@ class Parser {
     };
     const auto unknown = [&](const std::string& name) {
       std::vector<std::string> names;
-      if (std::holds_alternative<BoxMeshSpec>(scene.mesh)) names = box_set_names();
-      else names = {"all", "mat_<n>"};
+      if (std::holds_alternative<BoxMeshSpec>(scene.mesh))
+        names = box_set_names();
+      else
+        names = {"all", "mat_<n>"};
       for (const auto& s : scene.node_sets) names.push_back(s.name);
       return "unknown node set '" + name + "' (known: " + join(names) + ")";
     };

@@ -30,8 +30,8 @@ class DofMap {
   // Prescribed value of every dof (zero for free dofs) [m].
   const Vector& prescribed_values() const { return prescribed_values_; }
 
-  Vector gather_free(const Vector& full) const;                // full (3n) -> free
-  void scatter_free(const Vector& free, Vector& full) const;   // writes the free entries only
+  Vector gather_free(const Vector& full) const;               // full (3n) -> free
+  void scatter_free(const Vector& free, Vector& full) const;  // writes the free entries only
 
  private:
   std::vector<int> free_index_;

@@ -24,7 +24,8 @@ class ForceContribution {
 // surface).
 class ConstantForce : public ForceContribution {
  public:
-  ConstantForce(std::string name, Vector force) : name_(std::move(name)), force_(std::move(force)) {}
+  ConstantForce(std::string name, Vector force)
+      : name_(std::move(name)), force_(std::move(force)) {}
   std::string name() const override { return name_; }
   void add(const Vector&, double load_factor, Vector& force, SymmetricMatrix*) const override {
     force += load_factor * force_;

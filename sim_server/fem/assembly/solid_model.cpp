@@ -1,13 +1,14 @@
 #include "fem/assembly/solid_model.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
 namespace tongue::fem {
 
-SolidModel::SolidModel(Mesh mesh, std::shared_ptr<const Material> material,
-                       Formulation formulation, double density,
-                       const std::vector<PrescribedDof>& prescribed,
+SolidModel::SolidModel(Mesh mesh, std::shared_ptr<const Material> material, Formulation formulation,
+                       double density, const std::vector<PrescribedDof>& prescribed,
                        const std::vector<std::pair<int, int>>& extra_node_pairs)
     : mesh_(std::move(mesh)),
       material_(std::move(material)),
@@ -54,8 +55,8 @@ AssemblyStatus SolidModel::assemble(const Vector& u, Vector& internal_force,
   const Vector x = rest_positions_ + u;
   ElementResponse r;
   for (int e = 0; e < mesh_.num_elements(); ++e) {
-    const bool ok = evaluate_element(geometry_[e], element_coords(e, x), *material_,
-                                     formulation_, stiffness != nullptr, r);
+    const bool ok = evaluate_element(geometry_[e], element_coords(e, x), *material_, formulation_,
+                                     stiffness != nullptr, r);
     status.min_J = std::min(status.min_J, r.min_J);
     if (!ok) {
       status.ok = false;
@@ -64,7 +65,8 @@ AssemblyStatus SolidModel::assemble(const Vector& u, Vector& internal_force,
     }
     if (strain_energy) *strain_energy += r.energy;
     const Hex8& nodes = mesh_.elements[e];
-    for (int a = 0; a < 8; ++a) internal_force.segment<3>(3 * nodes[a]) += r.force.segment<3>(3 * a);
+    for (int a = 0; a < 8; ++a)
+      internal_force.segment<3>(3 * nodes[a]) += r.force.segment<3>(3 * a);
     if (stiffness) {
       std::vector<double>& values = stiffness->values();
       const auto& scatter = element_scatter_[e];
@@ -83,7 +85,8 @@ SymmetricMatrix SolidModel::mass_matrix(bool lumped) const {
   SymmetricMatrix M(pattern_);
   std::vector<double>& values = M.values();
   for (int e = 0; e < mesh_.num_elements(); ++e) {
-    Eigen::Matrix<double, 8, 8> m = density_ * element_mass_pattern(element_coords(e, rest_positions_));
+    Eigen::Matrix<double, 8, 8> m =
+        density_ * element_mass_pattern(element_coords(e, rest_positions_));
     if (lumped) {
       const Eigen::Matrix<double, 8, 1> row_sums = m.rowwise().sum();
       m = row_sums.asDiagonal();
@@ -117,7 +120,9 @@ double SolidModel::reference_volume() const {
   return v;
 }
 
-double SolidModel::total_mass() const { return density_ * reference_volume(); }
+double SolidModel::total_mass() const {
+  return density_ * reference_volume();
+}
 
 double SolidModel::current_volume(const Vector& u) const {
   const Vector x = rest_positions_ + u;

@@ -79,7 +79,9 @@ AssemblyPattern build_assembly_pattern(const Mesh& mesh, const DofMap& dofs,
 SymmetricMatrix::SymmetricMatrix(std::shared_ptr<const SparsityPattern> pattern)
     : pattern_(std::move(pattern)), values_(pattern_->nnz(), 0.0) {}
 
-void SymmetricMatrix::set_zero() { std::fill(values_.begin(), values_.end(), 0.0); }
+void SymmetricMatrix::set_zero() {
+  std::fill(values_.begin(), values_.end(), 0.0);
+}
 
 Vector SymmetricMatrix::multiply(const Vector& x) const {
   const SparsityPattern& p = *pattern_;

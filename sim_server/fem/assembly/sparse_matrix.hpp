@@ -13,7 +13,7 @@
 namespace tongue::fem {
 
 struct SparsityPattern {
-  int size = 0;                 // number of rows and columns (free dofs)
+  int size = 0;                   // number of rows and columns (free dofs)
   std::vector<int> column_start;  // size + 1 entries
   std::vector<int> row_index;     // sorted within each column, row <= column
 
@@ -31,8 +31,9 @@ struct AssemblyPattern {
 };
 
 // extra_node_pairs couples nodes that share no element (e.g. consecutive nodes of a muscle fibre).
-AssemblyPattern build_assembly_pattern(const Mesh& mesh, const DofMap& dofs,
-                                       const std::vector<std::pair<int, int>>& extra_node_pairs = {});
+AssemblyPattern build_assembly_pattern(
+    const Mesh& mesh, const DofMap& dofs,
+    const std::vector<std::pair<int, int>>& extra_node_pairs = {});
 
 class SymmetricMatrix {
  public:

@@ -15,7 +15,8 @@ ElementGeometry make_element_geometry(const hex8::ElementCoords& X) {
     const Mat3 jac = X.transpose() * dN_dxi;  // dX/dxi
     const double det = jac.determinant();
     if (!(det > 0.0)) {
-      throw std::invalid_argument("element has a non-positive Jacobian determinant at a Gauss point");
+      throw std::invalid_argument(
+          "element has a non-positive Jacobian determinant at a Gauss point");
     }
     g.dN_dX[q] = dN_dxi * jac.inverse();
     g.weight[q] = rule[q].weight * det;

@@ -16,7 +16,7 @@ namespace tongue::fem {
 
 enum class Formulation { standard, mean_dilatation };
 
-using ElementVector = Eigen::Matrix<double, 24, 1>;   // dof 3a + i: node a, component i
+using ElementVector = Eigen::Matrix<double, 24, 1>;  // dof 3a + i: node a, component i
 using ElementMatrix = Eigen::Matrix<double, 24, 24>;
 
 // Reference-configuration data of one element, computed once.
@@ -30,10 +30,10 @@ struct ElementGeometry {
 ElementGeometry make_element_geometry(const hex8::ElementCoords& X);
 
 struct ElementResponse {
-  double energy = 0.0;     // strain energy [J]
-  ElementVector force;     // internal force [N]
-  ElementMatrix stiffness; // d(force)/dx [N/m]; filled only when asked for
-  double min_J = 0.0;      // smallest det F over the Gauss points
+  double energy = 0.0;      // strain energy [J]
+  ElementVector force;      // internal force [N]
+  ElementMatrix stiffness;  // d(force)/dx [N/m]; filled only when asked for
+  double min_J = 0.0;       // smallest det F over the Gauss points
 };
 
 // Evaluates the element at current nodal positions x. Returns false, leaving the response

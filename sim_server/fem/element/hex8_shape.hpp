@@ -9,8 +9,14 @@ namespace tongue::fem::hex8 {
 
 // Reference coordinates (xi, eta, zeta) of the 8 nodes.
 inline constexpr std::array<std::array<double, 3>, 8> kNodeCoords = {{
-    {-1, -1, -1}, {1, -1, -1}, {1, 1, -1}, {-1, 1, -1},
-    {-1, -1, 1},  {1, -1, 1},  {1, 1, 1},  {-1, 1, 1},
+    {-1, -1, -1},
+    {1, -1, -1},
+    {1, 1, -1},
+    {-1, 1, -1},
+    {-1, -1, 1},
+    {1, -1, 1},
+    {1, 1, 1},
+    {-1, 1, 1},
 }};
 
 using ShapeValues = Eigen::Matrix<double, 8, 1>;

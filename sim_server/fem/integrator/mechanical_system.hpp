@@ -13,7 +13,9 @@ class MechanicalSystem {
  public:
   explicit MechanicalSystem(std::shared_ptr<const SolidModel> solid) : solid_(std::move(solid)) {}
 
-  void add_load(std::shared_ptr<const ForceContribution> load) { loads_.push_back(std::move(load)); }
+  void add_load(std::shared_ptr<const ForceContribution> load) {
+    loads_.push_back(std::move(load));
+  }
   const std::vector<std::shared_ptr<const ForceContribution>>& loads() const { return loads_; }
   const SolidModel& solid() const { return *solid_; }
 

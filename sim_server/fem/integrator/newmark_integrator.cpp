@@ -20,7 +20,9 @@ class NewmarkIntegrator::StepProblem : public NonlinearProblem {
         a_n_(dofs_.gather_free(integrator.a_)),
         u_full_(integrator.u_) {}
 
-  std::shared_ptr<const SparsityPattern> pattern() const override { return in_.mass_.shared_pattern(); }
+  std::shared_ptr<const SparsityPattern> pattern() const override {
+    return in_.mass_.shared_pattern();
+  }
   bool residual(const Vector& x, Vector& r) override { return evaluate(x, r, nullptr); }
   bool residual_and_tangent(const Vector& x, Vector& r, SymmetricMatrix& K) override {
     if (!evaluate(x, r, &K)) return false;
@@ -69,7 +71,8 @@ NewmarkIntegrator::NewmarkIntegrator(const MechanicalSystem& system, DynamicSett
   if (!(p.beta > 0.0) || !(p.gamma >= 0.5)) {
     throw std::invalid_argument("Newmark needs beta > 0 and gamma >= 1/2 (implicit and stable)");
   }
-  initialize(Vector::Zero(system.solid().num_dofs()), Vector::Zero(system.solid().num_dofs()));
+  const int n = system.solid().num_dofs();
+  u_ = v_ = a_ = Vector::Zero(n);
 }
 
 NewmarkIntegrator::~NewmarkIntegrator() = default;
@@ -103,16 +106,19 @@ void NewmarkIntegrator::initialize(const Vector& u0, const Vector& v0, double t0
   a_ = Vector::Zero(u_.size());
   dofs.scatter_free(mass_solver.solve(rhs), a_);
   newton_.invalidate_factor();
+  initialized_ = true;
 }
 
 StepReport NewmarkIntegrator::step(double dt) {
+  if (!initialized_) initialize(u_, v_, t_);
   const auto start = std::chrono::steady_clock::now();
   StepReport report;
   report.dt = dt;
   report.substeps = 0;
   report.converged = advance(dt, report, 0);
   report.time = t_;
-  report.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  report.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return report;
 }
 
@@ -123,7 +129,8 @@ bool NewmarkIntegrator::advance(double dt, StepReport& report, int depth) {
   const DofMap& dofs = system_.solid().dofs();
   Vector x = dofs.gather_free(u_);
   const NewtonReport newton = newton_.solve(problem, x);
-  if (report.iterations == 0 && report.substeps == 0) report.initial_residual = newton.initial_residual;
+  if (report.iterations == 0 && report.substeps == 0)
+    report.initial_residual = newton.initial_residual;
   report.iterations += newton.iterations;
   report.factorizations += newton.factorizations;
   report.residual_evaluations += newton.residual_evaluations;

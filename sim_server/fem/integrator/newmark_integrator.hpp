@@ -42,8 +42,9 @@ class NewmarkIntegrator {
   ~NewmarkIntegrator();
 
   // Sets u, v (full vectors; prescribed dofs take their prescribed values and zero velocity)
-  // and the consistent initial acceleration from M a = f_ext - f_int - C v. Throws
-  // std::runtime_error when f_int cannot be evaluated at u.
+  // and the consistent initial acceleration from M a = f_ext - f_int - C v; K0 for the damping
+  // is formed here. Throws std::runtime_error when f_int cannot be evaluated at u. A first
+  // step() without it starts from rest at u = 0.
   void initialize(const Vector& u0, const Vector& v0, double t0 = 0.0);
 
   // Advances by dt; cuts and retries on failure. When the report says !converged the state is
@@ -69,6 +70,7 @@ class NewmarkIntegrator {
   Vector u_, v_, a_;  // full vectors
   double t_ = 0.0;
   double last_dt_ = 0.0;
+  bool initialized_ = false;
 };
 
 }  // namespace tongue::fem

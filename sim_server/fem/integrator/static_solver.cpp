@@ -13,7 +13,9 @@ class StaticProblem : public NonlinearProblem {
   StaticProblem(const MechanicalSystem& system, Vector u_template, double load_factor)
       : system_(system), u_(std::move(u_template)), load_factor_(load_factor) {}
 
-  std::shared_ptr<const SparsityPattern> pattern() const override { return system_.solid().pattern(); }
+  std::shared_ptr<const SparsityPattern> pattern() const override {
+    return system_.solid().pattern();
+  }
   bool residual(const Vector& x, Vector& r) override { return evaluate(x, r, nullptr); }
   bool residual_and_tangent(const Vector& x, Vector& r, SymmetricMatrix& K) override {
     return evaluate(x, r, &K);
@@ -48,7 +50,9 @@ void accumulate(StepReport& step, const NewtonReport& newton) {
 
 }  // namespace
 
-StaticReport solve_static(const MechanicalSystem& system, Vector& u, const StaticSettings& settings) {
+StaticReport solve_static(const MechanicalSystem& system, Vector& u,
+                          const StaticSettings& settings,
+                          const IncrementObserver& observer) {
   StaticReport report;
   const DofMap& dofs = system.solid().dofs();
   NewtonSolver newton(system.solid().pattern(), settings.newton);
@@ -66,7 +70,8 @@ StaticReport solve_static(const MechanicalSystem& system, Vector& u, const Stati
     const NewtonReport result = newton.solve(problem, x);
     if (pending.iterations == 0) pending.initial_residual = result.initial_residual;
     accumulate(pending, result);
-    pending.wall_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    pending.wall_seconds +=
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (result.converged) {
       u = problem.full(x);
       lambda = target;
@@ -74,6 +79,7 @@ StaticReport solve_static(const MechanicalSystem& system, Vector& u, const Stati
       pending.dt = increment;
       pending.converged = true;
       report.increments.push_back(pending);
+      if (observer) observer(pending, u);
       pending = StepReport{};
       cuts_in_row = 0;
       continue;

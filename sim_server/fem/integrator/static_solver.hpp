@@ -2,6 +2,7 @@
 // Static equilibrium f_int(u) = f_ext(u) reached by load stepping: the loads and prescribed
 // displacements are raised in equal increments of the load factor, each solved by Newton;
 // an increment that fails is halved and retried.
+#include <functional>
 #include <vector>
 
 #include "fem/integrator/mechanical_system.hpp"
@@ -22,8 +23,12 @@ struct StaticReport {
   std::string message;
 };
 
+// Called after each accepted load increment with its report and the displacement reached.
+using IncrementObserver = std::function<void(const StepReport&, const Vector& u)>;
+
 // u: initial guess in, equilibrium out (full displacement vector). Prescribed dofs end at their
-// prescribed values.
-StaticReport solve_static(const MechanicalSystem& system, Vector& u, const StaticSettings& settings);
+// prescribed values. On failure u holds the last accepted increment.
+StaticReport solve_static(const MechanicalSystem& system, Vector& u, const StaticSettings& settings,
+                          const IncrementObserver& observer = {});
 
 }  // namespace tongue::fem

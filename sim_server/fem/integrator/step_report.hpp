@@ -6,12 +6,12 @@
 namespace tongue::fem {
 
 struct StepReport {
-  double time = 0.0;          // simulated time at the end of the step [s]
-  double dt = 0.0;            // requested step [s]
+  double time = 0.0;  // simulated time at the end of the step [s]
+  double dt = 0.0;    // requested step [s]
   bool converged = false;
-  int substeps = 1;           // > 1 when the step was cut and retried in pieces
-  int cuts = 0;               // how many times a (sub)step was halved
-  int iterations = 0;         // Newton iterations over all substeps
+  int substeps = 1;    // > 1 when the step was cut and retried in pieces
+  int cuts = 0;        // how many times a (sub)step was halved
+  int iterations = 0;  // Newton iterations over all substeps
   int factorizations = 0;
   int residual_evaluations = 0;
   double initial_residual = 0.0;  // of the first substep [N]

@@ -7,6 +7,10 @@
 #include <cmath>
 #include <stdexcept>
 
+// OpenBLAS's run-time thread setting (declared here: Debian's OpenBLAS installs cblas.h under a
+// BLAS-alternatives path that other BLAS builds do not share).
+extern "C" void openblas_set_num_threads(int num_threads);
+
 namespace tongue::fem {
 
 namespace {
@@ -24,6 +28,9 @@ struct CholmodSolver::Impl {
 
 CholmodSolver::CholmodSolver(std::shared_ptr<const SparsityPattern> pattern)
     : impl_(std::make_unique<Impl>()), pattern_(std::move(pattern)) {
+  // One BLAS thread: at the tongue's sizes the supernodes are small, and idle OpenBLAS threads
+  // spinning between calls cost more than the second core gains (issue 6 measures this).
+  openblas_set_num_threads(1);
   cholmod_common& c = impl_->common;
   cholmod_start(&c);
   c.supernodal = CHOLMOD_SUPERNODAL;
@@ -61,7 +68,8 @@ FactorizationReport CholmodSolver::factorize(const SymmetricMatrix& matrix) {
 
   FactorizationReport report;
   double max_diagonal = 0.0;
-  for (int i = 0; i < pattern_->size; ++i) max_diagonal = std::max(max_diagonal, std::abs(matrix.diagonal(i)));
+  for (int i = 0; i < pattern_->size; ++i)
+    max_diagonal = std::max(max_diagonal, std::abs(matrix.diagonal(i)));
 
   // Shifts tried after a failure, relative to the largest diagonal entry: small enough not to
   // slow Newton much when the loss of definiteness is marginal, large enough to win otherwise.
@@ -92,7 +100,11 @@ Vector CholmodSolver::solve(const Vector& b) const {
   return result;
 }
 
-double CholmodSolver::factor_nonzeros() const { return impl_->common.lnz; }
-double CholmodSolver::factorization_flops() const { return impl_->common.fl; }
+double CholmodSolver::factor_nonzeros() const {
+  return impl_->common.lnz;
+}
+double CholmodSolver::factorization_flops() const {
+  return impl_->common.fl;
+}
 
 }  // namespace tongue::fem

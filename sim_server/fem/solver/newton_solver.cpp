@@ -12,7 +12,9 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-bool all_finite(const Vector& v) { return v.allFinite(); }
+bool all_finite(const Vector& v) {
+  return v.allFinite();
+}
 
 }  // namespace
 
@@ -110,7 +112,8 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, Vector& x) {
     report.last_increment = eta * dx.norm();
     report.residual_history.push_back(r_norm);
 
-    const bool residual_small = r_norm <= std::max(s.residual_rtol * report.initial_residual, s.residual_atol);
+    const bool residual_small =
+        r_norm <= std::max(s.residual_rtol * report.initial_residual, s.residual_atol);
     const bool increment_small =
         report.last_increment <= std::max(s.increment_rtol * (x - x0).norm(), s.increment_atol);
     if ((residual_small && increment_small) || r_norm <= s.residual_atol) {

@@ -16,7 +16,7 @@ struct NewtonSettings {
   // ||dx|| <= max(increment_rtol ||x - x_0||, increment_atol); or at once when
   // ||r|| <= residual_atol.
   double residual_rtol = 1e-6;
-  double residual_atol = 1e-9;   // [N]
+  double residual_atol = 1e-9;  // [N]
   double increment_rtol = 1e-6;
   double increment_atol = 1e-12;  // [m]
   int max_iterations = 25;

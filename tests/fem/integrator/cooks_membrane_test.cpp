@@ -36,7 +36,8 @@ double cook_tip_displacement(int n, Formulation formulation) {
   // 100 N per mm of thickness, as a uniform shear traction on the right edge.
   Vector load = uniform_surface_force(mesh, mesh.node_set("right"), Vec3(0, 100.0, 0));
   const int tip = mesh.node_set("corner_top_right").front();
-  auto material = make_material("neo_hookean", {{"shear_modulus", 80.1938e6}, {"bulk_modulus", 400942e6}});
+  auto material =
+      make_material("neo_hookean", {{"shear_modulus", 80.1938e6}, {"bulk_modulus", 400942e6}});
   auto solid = std::make_shared<SolidModel>(std::move(mesh), std::move(material), formulation,
                                             1000.0, prescribed);
   MechanicalSystem system(solid);

@@ -9,9 +9,9 @@
 
 #include "fem/integrator/static_solver.hpp"
 #include "fem/material/linear_elastic.hpp"
+#include "fem/material/material_test_support.hpp"  // from tests/
 #include "fem/mesh/boundary_faces.hpp"
 #include "fem/mesh/box_generator.hpp"
-#include "fem/material/material_test_support.hpp"  // from tests/
 
 namespace tongue::fem {
 namespace {

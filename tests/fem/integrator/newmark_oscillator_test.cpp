@@ -19,7 +19,7 @@ namespace {
 
 struct Oscillator {
   std::shared_ptr<SolidModel> solid;
-  int dof;       // the one free dof
+  int dof;      // the one free dof
   double m, k;  // its mass [kg] and stiffness [N/m]
 };
 
@@ -62,7 +62,8 @@ double max_error(const Oscillator& osc, const RayleighDamping& damping, int step
   for (int n = 0; n < 2 * steps_per_period; ++n) {
     const StepReport report = integrator.step(dt);
     EXPECT_TRUE(report.converged) << report.message;
-    worst = std::max(worst, std::abs(integrator.displacement()[osc.dof] - exact(integrator.time())));
+    worst =
+        std::max(worst, std::abs(integrator.displacement()[osc.dof] - exact(integrator.time())));
   }
   return worst;
 }
@@ -92,7 +93,9 @@ void expect_second_order(const RayleighDamping& damping, const char* label) {
   EXPECT_LT(previous, 1.05 * predicted);
 }
 
-TEST(NewmarkOscillator, UndampedIsSecondOrder) { expect_second_order({}, "undamped"); }
+TEST(NewmarkOscillator, UndampedIsSecondOrder) {
+  expect_second_order({}, "undamped");
+}
 
 TEST(NewmarkOscillator, RayleighDampedIsSecondOrder) {
   // alpha and beta chosen so that zeta ~ 0.1 for this oscillator (w ~ 2e2 rad/s).

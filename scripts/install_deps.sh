@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages the project builds, tests and runs with; does nothing when they
+# are all present. Run as root (or with sudo).
+set -euo pipefail
+
+packages=(
+  build-essential cmake pkg-config clang-format
+  libeigen3-dev                    # Eigen 3.4
+  libsuitesparse-dev libopenblas-dev  # CHOLMOD with an optimized BLAS
+  liblcm-dev liblcm-bin            # LCM 1.3: library, lcm-gen, lcm-logger, lcm-logplayer
+  libhdf5-dev                      # HDF5 1.10, C and C++
+  libyaml-cpp-dev                  # scene files
+  libgtest-dev                     # GoogleTest
+  python3 python3-h5py python3-numpy  # reading run logs back in tests and scripts
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install_deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+echo "install_deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}"

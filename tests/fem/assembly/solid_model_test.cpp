@@ -1,0 +1,224 @@
+// SolidModel: the assembled tangent is the derivative of the assembled internal force, which is
+// the derivative of the strain energy (central finite differences on a distorted box at a
+// strongly deformed, non-homogeneous state); mass, volume and inversion reporting.
+#include <gtest/gtest.h>
+
+#include <Eigen/Eigenvalues>
+#include <Eigen/Geometry>
+#include <cmath>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "fem/assembly/solid_model.hpp"
+#include "fem/material/material_factory.hpp"
+#include "fem/mesh/box_generator.hpp"
+#include "support/finite_difference.hpp"
+
+namespace tongue::fem {
+namespace {
+
+using testing::central_difference_jacobian;
+
+constexpr double kLx = 0.03, kLy = 0.02, kLz = 0.02;  // m
+constexpr double kDensity = 1040.0;                   // kg/m^3
+
+// A 3 x 2 x 2 box of 10 mm elements with every interior node moved by up to ~1.5 mm, so that
+// no two elements share their geometry.
+Mesh distorted_box() {
+  return map_nodes(make_box(Vec3::Zero(), Vec3(kLx, kLy, kLz), 3, 2, 2), [](const Vec3& X) {
+    const Vec3 s(X.x() / kLx, X.y() / kLy, X.z() / kLz);  // in [0, 1]
+    const double bump = std::sin(M_PI * s.x()) * std::sin(M_PI * s.y()) * std::sin(M_PI * s.z());
+    return Vec3(X.x() + 1.5e-3 * bump + 0.5e-3 * s.y() * s.z(), X.y() - 1.0e-3 * bump * s.x(),
+                X.z() + 0.8e-3 * std::sin(M_PI * s.x()) * s.y());
+  });
+}
+
+// Large rotation, stretch and shear plus bending and twist: F varies strongly over the box.
+Vec3 deformation(const Vec3& X) {
+  Mat3 F;
+  F << 1.3, 0.25, -0.1, 0.05, 0.8, 0.15, -0.1, 0.1, 1.1;
+  const Mat3 R = Eigen::AngleAxisd(0.5, Vec3(1, -2, 1).normalized()).toRotationMatrix();
+  const double t = X.x() / kLx;
+  Vec3 u = (R * F - Mat3::Identity()) * X;
+  u.z() += 4e-3 * t * t;                               // bending
+  u.y() += 2e-3 * t * std::sin(3.0 * X.z() / kLz);     // twist-like
+  u.x() += 1.5e-3 * std::sin(M_PI * X.y() / kLy) * t;  // non-affine stretch
+  return u;
+}
+
+Vector displacement_field(const Mesh& mesh, const std::function<Vec3(const Vec3&)>& u) {
+  Vector v(3 * mesh.num_nodes());
+  for (int n = 0; n < mesh.num_nodes(); ++n) v.segment<3>(3 * n) = u(mesh.nodes[n]);
+  return v;
+}
+
+std::shared_ptr<const Material> mooney_rivlin() {
+  return make_material("mooney_rivlin5", {});  // the paper's law, nu = 0.49
+}
+
+// x_min clamped at the displacement of the deformed state, plus single components on x_max.
+std::vector<PrescribedDof> constraints(const Mesh& mesh) {
+  std::vector<PrescribedDof> p;
+  for (int n : mesh.node_set("x_min")) {
+    const Vec3 u = deformation(mesh.nodes[n]);
+    for (int c = 0; c < 3; ++c) p.push_back({n, c, u[c]});
+  }
+  const std::vector<int>& right = mesh.node_set("x_max");
+  for (std::size_t i = 0; i < right.size(); i += 2) {
+    p.push_back({right[i], 2, deformation(mesh.nodes[right[i]]).z()});
+  }
+  return p;
+}
+
+class AssembledTangent : public ::testing::TestWithParam<Formulation> {};
+
+TEST_P(AssembledTangent, MatchesFiniteDifferencesOfTheAssembledForce) {
+  const Mesh mesh = distorted_box();
+  const SolidModel model(mesh, mooney_rivlin(), GetParam(), kDensity, constraints(mesh));
+  const DofMap& dofs = model.dofs();
+  ASSERT_GT(dofs.num_free(), 60);
+  ASSERT_LT(dofs.num_free(), dofs.num_dofs());
+
+  Vector u_full = displacement_field(mesh, deformation);
+  // Free dofs at the deformed state; prescribed dofs stay at their prescribed values.
+  const Vector y0 = dofs.gather_free(u_full);
+  auto full = [&](const Vector& y) {
+    Vector u = dofs.prescribed_values();
+    dofs.scatter_free(y, u);
+    return u;
+  };
+  ASSERT_LT((full(y0) - u_full).norm(), 1e-15);
+
+  Vector f;
+  SymmetricMatrix K(model.pattern());
+  double energy = 0.0;
+  const AssemblyStatus status = model.assemble(full(y0), f, &K, &energy);
+  ASSERT_TRUE(status.ok);
+  // Strongly deformed (displacements comparable to the 10 mm elements), nowhere near inversion.
+  EXPECT_GT(u_full.lpNorm<Eigen::Infinity>(), 8e-3);
+  EXPECT_GT(status.min_J, 0.3);
+  EXPECT_GT(energy, 0.0);
+
+  auto force = [&](const Vector& y) {
+    Vector fy;
+    EXPECT_TRUE(model.assemble(full(y), fy, nullptr).ok);
+    return Vector(dofs.gather_free(fy));
+  };
+  auto strain_energy = [&](const Vector& y) {
+    Vector fy;
+    double e = 0.0;
+    EXPECT_TRUE(model.assemble(full(y), fy, nullptr, &e).ok);
+    return Vector::Constant(1, e);
+  };
+  // h = 1e-8 m against 10 mm elements and displacements of ~10 mm (relative 1e-6): truncation
+  // O(h^2 / L^2) ~ 1e-12 and round-off O(eps L / h) ~ 1e-10 of the result, both far below the
+  // 1e-6 required, which a wrong sign, factor or misplaced entry in the scatter would exceed by
+  // orders of magnitude.
+  const double h = 1e-8;
+  const Eigen::MatrixXd dK = central_difference_jacobian(force, y0, h);
+  const Eigen::MatrixXd K_dense = K.to_dense();
+  EXPECT_LT((dK - K_dense).norm() / K_dense.norm(), 1e-6);
+
+  const Vector dE = central_difference_jacobian(strain_energy, y0, h).transpose();
+  const Vector f_free = dofs.gather_free(f);
+  EXPECT_LT((dE - f_free).norm() / f_free.norm(), 1e-6);
+}
+
+INSTANTIATE_TEST_SUITE_P(MooneyRivlin5, AssembledTangent,
+                         ::testing::Values(Formulation::standard, Formulation::mean_dilatation),
+                         [](const auto& info) {
+                           return std::string(info.param == Formulation::standard
+                                                  ? "standard"
+                                                  : "mean_dilatation");
+                         });
+
+TEST(SolidModel, RigidMotionLeavesNoInternalForce) {
+  const Mesh mesh = distorted_box();
+  const SolidModel model(mesh, mooney_rivlin(), Formulation::mean_dilatation, kDensity, {});
+  const Mat3 R = Eigen::AngleAxisd(1.2, Vec3(0.2, 1, -0.5).normalized()).toRotationMatrix();
+  const Vector u = displacement_field(
+      mesh, [&](const Vec3& X) { return Vec3((R - Mat3::Identity()) * X + Vec3(0.01, 0, -0.02)); });
+  Vector f;
+  ASSERT_TRUE(model.assemble(u, f, nullptr).ok);
+  // Compare with the forces of the deformed state: stress round-off is ~1e-12 of kPa stresses.
+  Vector f_deformed;
+  ASSERT_TRUE(model.assemble(displacement_field(mesh, deformation), f_deformed, nullptr).ok);
+  EXPECT_LT(f.norm(), 1e-10 * f_deformed.norm());
+}
+
+TEST(SolidModel, InvertedElementIsReported) {
+  const Mesh mesh = make_box(Vec3::Zero(), Vec3(kLx, kLy, kLz), 3, 2, 2);
+  const SolidModel model(mesh, mooney_rivlin(), Formulation::standard, kDensity, {});
+  Vector u = Vector::Zero(model.num_dofs());
+  // The box corner (3, 2, 2) belongs to the last element only: move it 1 mm beyond the
+  // element's opposite corner, turning the element inside out.
+  const Hex8& element = mesh.elements.back();
+  const Vec3 target = mesh.nodes[element[0]] - Vec3(1e-3, 1e-3, 1e-3);
+  u.segment<3>(3 * element[6]) = target - mesh.nodes[element[6]];
+  Vector f;
+  const AssemblyStatus status = model.assemble(u, f, nullptr);
+  EXPECT_FALSE(status.ok);
+  EXPECT_EQ(status.inverted_element, mesh.num_elements() - 1);
+  EXPECT_LE(status.min_J, 0.0);
+}
+
+// u^T M u for a rigid unit translation is the kinetic-energy mass of the body.
+double translation_mass(const SymmetricMatrix& M, int direction) {
+  Vector u = Vector::Zero(M.pattern().size);
+  for (int i = direction; i < u.size(); i += 3) u[i] = 1.0;
+  return u.dot(M.multiply(u));
+}
+
+TEST(SolidModel, MassMatricesCarryTheTotalMassAndAreSymmetricPositiveDefinite) {
+  // No constraints, so that the matrices over the free dofs are the whole mass matrices.
+  const SolidModel regular(make_box(Vec3::Zero(), Vec3(kLx, kLy, kLz), 3, 2, 2), mooney_rivlin(),
+                           Formulation::standard, kDensity, {});
+  EXPECT_NEAR(regular.total_mass(), kDensity * kLx * kLy * kLz, 1e-14);  // kg, ~1e-2 of it
+  const SolidModel distorted(distorted_box(), mooney_rivlin(), Formulation::standard, kDensity, {});
+
+  for (const SolidModel* model : {&regular, &distorted}) {
+    const double mass = model->total_mass();
+    EXPECT_NEAR(mass, kDensity * model->reference_volume(), 1e-15);
+    for (bool lumped : {false, true}) {
+      SCOPED_TRACE(lumped ? "lumped" : "consistent");
+      const SymmetricMatrix M = model->mass_matrix(lumped);
+      // Sums of ~100 positive terms: relative round-off ~1e-15.
+      for (int d = 0; d < 3; ++d) EXPECT_NEAR(translation_mass(M, d), mass, 1e-13 * mass);
+
+      const Eigen::MatrixXd dense = M.to_dense();
+      EXPECT_EQ(dense, dense.transpose());
+      const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(dense, Eigen::EigenvaluesOnly);
+      // u^T M u >= sum_e lambda_min(M_e) |u_e|^2 and lambda_min(M_e) = m_e / 216 for a hex8
+      // consistent mass (1/6 per direction), so lambda_min(M) >= m_e / 216 = mass / 2592 here;
+      // the bound below is 14x lower and still ~1e10 times the round-off level.
+      EXPECT_GT(eig.eigenvalues().minCoeff(), 1e-3 * mass / model->mesh().num_nodes());
+      if (lumped) {
+        EXPECT_EQ((dense - Eigen::MatrixXd(dense.diagonal().asDiagonal())).norm(), 0.0);
+      }
+    }
+  }
+}
+
+TEST(SolidModel, CurrentVolumeIsExactForAffineDeformations) {
+  const Mesh mesh = distorted_box();
+  const SolidModel model(mesh, mooney_rivlin(), Formulation::standard, kDensity, {});
+  const double V = model.reference_volume();
+  // The distortion changes the volume a little, not much.
+  EXPECT_NEAR(V, kLx * kLy * kLz, 0.05 * kLx * kLy * kLz);
+  // 2x2x2 Gauss integrates J of a trilinear map exactly: only round-off (~1e-16 relative).
+  EXPECT_NEAR(model.current_volume(Vector::Zero(model.num_dofs())), V, 1e-14 * V);
+
+  Mat3 A;
+  A << 1.3, 0.3, -0.1, 0.05, 0.8, 0.2, 0.1, -0.25, 1.15;
+  ASSERT_GT(A.determinant(), 0.5);
+  ASSERT_GT(std::abs(A.determinant() - 1.0), 0.05);
+  const Vector u =
+      displacement_field(mesh, [&](const Vec3& X) { return Vec3((A - Mat3::Identity()) * X); });
+  EXPECT_NEAR(model.current_volume(u), A.determinant() * V, 1e-13 * V);
+  // And under the non-affine deformation it is positive and not simply det(A) V.
+  EXPECT_GT(model.current_volume(displacement_field(mesh, deformation)), 0.0);
+}
+
+}  // namespace
+}  // namespace tongue::fem
