@@ -129,16 +129,7 @@ bool NewmarkIntegrator::advance(double dt, StepReport& report, int depth) {
   const DofMap& dofs = system_.solid().dofs();
   Vector x = dofs.gather_free(u_);
   const NewtonReport newton = newton_.solve(problem, x);
-  if (report.iterations == 0 && report.substeps == 0)
-    report.initial_residual = newton.initial_residual;
-  report.iterations += newton.iterations;
-  report.factorizations += newton.factorizations;
-  report.residual_evaluations += newton.residual_evaluations;
-  report.final_residual = newton.final_residual;
-  report.max_shift = std::max(report.max_shift, newton.max_shift);
-  report.assembly_seconds += newton.assembly_seconds;
-  report.factorization_seconds += newton.factorization_seconds;
-  report.solve_seconds += newton.solve_seconds;
+  report.add(newton);
 
   if (newton.converged) {
     const Vector a = problem.acceleration(x);

@@ -37,21 +37,9 @@ class StaticProblem : public NonlinearProblem {
   double load_factor_;
 };
 
-void accumulate(StepReport& step, const NewtonReport& newton) {
-  step.iterations += newton.iterations;
-  step.factorizations += newton.factorizations;
-  step.residual_evaluations += newton.residual_evaluations;
-  step.final_residual = newton.final_residual;
-  step.max_shift = std::max(step.max_shift, newton.max_shift);
-  step.assembly_seconds += newton.assembly_seconds;
-  step.factorization_seconds += newton.factorization_seconds;
-  step.solve_seconds += newton.solve_seconds;
-}
-
 }  // namespace
 
-StaticReport solve_static(const MechanicalSystem& system, Vector& u,
-                          const StaticSettings& settings,
+StaticReport solve_static(const MechanicalSystem& system, Vector& u, const StaticSettings& settings,
                           const IncrementObserver& observer) {
   StaticReport report;
   const DofMap& dofs = system.solid().dofs();
@@ -68,8 +56,7 @@ StaticReport solve_static(const MechanicalSystem& system, Vector& u,
     StaticProblem problem(system, trial, target);
     Vector x = dofs.gather_free(trial);
     const NewtonReport result = newton.solve(problem, x);
-    if (pending.iterations == 0) pending.initial_residual = result.initial_residual;
-    accumulate(pending, result);
+    pending.add(result);
     pending.wall_seconds +=
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (result.converged) {

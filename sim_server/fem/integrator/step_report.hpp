@@ -1,7 +1,10 @@
 #pragma once
 // What one step of a solver did: every step records it, so no unconverged or cut step goes
 // unreported.
+#include <algorithm>
 #include <string>
+
+#include "fem/solver/newton_solver.hpp"
 
 namespace tongue::fem {
 
@@ -20,6 +23,20 @@ struct StepReport {
   double wall_seconds = 0.0;
   double assembly_seconds = 0.0, factorization_seconds = 0.0, solve_seconds = 0.0;
   std::string message;  // why a cut happened or why the step failed; empty when clean
+  int newton_solves = 0;
+
+  // Adds the figures of one Newton solve (a step, a substep or a retried increment).
+  void add(const NewtonReport& newton) {
+    if (newton_solves++ == 0) initial_residual = newton.initial_residual;
+    iterations += newton.iterations;
+    factorizations += newton.factorizations;
+    residual_evaluations += newton.residual_evaluations;
+    final_residual = newton.final_residual;
+    max_shift = std::max(max_shift, newton.max_shift);
+    assembly_seconds += newton.assembly_seconds;
+    factorization_seconds += newton.factorization_seconds;
+    solve_seconds += newton.solve_seconds;
+  }
 };
 
 }  // namespace tongue::fem
