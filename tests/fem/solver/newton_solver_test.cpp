@@ -225,5 +225,45 @@ TEST(NewtonSolver, ReportsFailureWhenOutOfIterations) {
   EXPECT_GT(report.final_residual, 1e-13);  // N: not yet at the tolerance
 }
 
+// Two uncoupled equations, x0^3 - x0 = 6 (root 2) and 10 (x1 - 1) = 0: at x0 = 0.5 the tangent
+// 3 x0^2 - 1 is negative, so the first factorization needs a shift.
+class CubicAndLinear : public NonlinearProblem {
+ public:
+  CubicAndLinear() {
+    auto p = std::make_shared<SparsityPattern>();
+    p->size = 2;
+    p->column_start = {0, 1, 2};
+    p->row_index = {0, 1};
+    pattern_ = p;
+  }
+  std::shared_ptr<const SparsityPattern> pattern() const override { return pattern_; }
+  bool residual(const Vector& x, Vector& r) override {
+    r = Vector(2);
+    r << x[0] * x[0] * x[0] - x[0] - 6.0, 10.0 * (x[1] - 1.0);
+    return true;
+  }
+  bool residual_and_tangent(const Vector& x, Vector& r, SymmetricMatrix& K) override {
+    residual(x, r);
+    K.values() = {3.0 * x[0] * x[0] - 1.0, 10.0};
+    return true;
+  }
+
+ private:
+  std::shared_ptr<const SparsityPattern> pattern_;
+};
+
+TEST(NewtonSolver, ShiftsAnIndefiniteTangentAndStillConverges) {
+  CubicAndLinear problem;
+  NewtonSolver newton(problem.pattern(), tight());
+  Vector x(2);
+  x << 0.5, 0.0;
+  const NewtonReport report = newton.solve(problem, x);
+  ASSERT_TRUE(report.converged) << report.failure;
+  // Any shift that makes diag(-0.25, 10) positive definite exceeds 0.25.
+  EXPECT_GT(report.max_shift, 0.25);
+  EXPECT_LT(std::abs(x[0] - 2.0), 1e-12);  // tangent ~11 near the root: |dx| ~ |r| / 11
+  EXPECT_LT(std::abs(x[1] - 1.0), 1e-12);
+}
+
 }  // namespace
 }  // namespace tongue::fem
