@@ -81,8 +81,8 @@ bool evaluate_element(const ElementGeometry& geometry, const hex8::ElementCoords
     r.min_J = std::min(r.min_J, J);
     if (!(J > 0.0)) return false;
 
-    const PointResponse point =
-        mean_dilatation ? uncoupled->isochoric_response(F) : material.response(F);
+    const PointResponse point = mean_dilatation ? uncoupled->isochoric_response(F, want_stiffness)
+                                                : material.response(F, want_stiffness);
     r.energy += w * point.energy;
     add_stress_force(G, point.stress, w, r.force);
     if (want_stiffness) add_material_stiffness(G, point.tangent, w, r.stiffness);

@@ -43,7 +43,7 @@ Mat9 LinearElastic::isotropic_tangent(double mu, double lambda) {
   return A;
 }
 
-PointResponse LinearElastic::response(const Mat3& F) const {
+PointResponse LinearElastic::response(const Mat3& F, bool with_tangent) const {
   const Mat3 H = F - Mat3::Identity();
   const Mat3 eps = 0.5 * (H + H.transpose());
   const double tr = eps.trace();
@@ -52,7 +52,7 @@ PointResponse LinearElastic::response(const Mat3& F) const {
   r.energy = 0.5 * lambda * tr * tr + mu_ * eps.squaredNorm();
   // dW/dF = dW/deps since eps is the symmetric part of F - I and dW/deps is symmetric.
   r.stress = lambda * tr * Mat3::Identity() + 2.0 * mu_ * eps;
-  r.tangent = tangent_;
+  if (with_tangent) r.tangent = tangent_;
   return r;
 }
 

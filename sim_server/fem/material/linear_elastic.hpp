@@ -14,7 +14,7 @@ class LinearElastic final : public Material {
   static LinearElastic from_youngs_modulus(double youngs_modulus, double poisson_ratio);
 
   std::string name() const override { return "linear"; }
-  PointResponse response(const Mat3& F) const override;
+  PointResponse response(const Mat3& F, bool with_tangent = true) const override;
   double initial_shear_modulus() const override { return mu_; }
   double bulk_modulus() const override { return K_; }
   double lame_lambda() const { return K_ - 2.0 * mu_ / 3.0; }

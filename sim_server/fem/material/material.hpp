@@ -10,9 +10,9 @@
 namespace tongue::fem {
 
 struct PointResponse {
-  double energy = 0.0;    // W [Pa = J/m^3]
-  Mat3 stress;            // P = dW/dF [Pa]
-  Mat9 tangent;           // A_{iJkL} = d2W / dF_iJ dF_kL [Pa], symmetric
+  double energy = 0.0;  // W [Pa = J/m^3]
+  Mat3 stress;          // P = dW/dF [Pa]
+  Mat9 tangent;         // A_{iJkL} = d2W / dF_iJ dF_kL [Pa], symmetric
 };
 
 // U(J) and its first two derivatives.
@@ -28,8 +28,9 @@ class Material {
  public:
   virtual ~Material() = default;
   virtual std::string name() const = 0;
-  // The full response at deformation gradient F (det F > 0).
-  virtual PointResponse response(const Mat3& F) const = 0;
+  // The full response at deformation gradient F (det F > 0). Without the tangent (a residual
+  // evaluation) `tangent` is left unset, which saves most of the work.
+  virtual PointResponse response(const Mat3& F, bool with_tangent = true) const = 0;
   // Non-null when W splits into W_iso(C_bar) + U(J): such materials can use mean dilatation.
   virtual const UncoupledMaterial* as_uncoupled() const { return nullptr; }
   // Small-strain shear and bulk moduli at the rest state [Pa], for wave speeds and checks.
@@ -54,12 +55,12 @@ class UncoupledMaterial : public Material {
 
   virtual InvariantDerivatives isochoric_derivatives(double I1_bar, double I2_bar) const = 0;
 
-  PointResponse response(const Mat3& F) const override;
+  PointResponse response(const Mat3& F, bool with_tangent = true) const override;
   const UncoupledMaterial* as_uncoupled() const override { return this; }
   double bulk_modulus() const override { return bulk_modulus_; }
 
   // The isochoric part alone: W_iso, dW_iso/dF, d2W_iso/dF2.
-  PointResponse isochoric_response(const Mat3& F) const;
+  PointResponse isochoric_response(const Mat3& F, bool with_tangent = true) const;
   // U(J) = K/2 (J - 1)^2 and its derivatives.
   VolumetricResponse volumetric(double J) const;
 

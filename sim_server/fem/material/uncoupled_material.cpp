@@ -61,7 +61,8 @@ void add_sym_outer(Mat9& A, double c, const Vec9& u, const Vec9& v) {
   A.noalias() += (c * v) * u.transpose();
 }
 
-void add_isochoric(const UncoupledMaterial& material, const Kinematics& k, PointResponse& out) {
+void add_isochoric(const UncoupledMaterial& material, const Kinematics& k, bool with_tangent,
+                   PointResponse& out) {
   const Mat3 I = Mat3::Identity();
   const double cbrt_J = std::cbrt(k.J);
   const double a1 = 1.0 / (cbrt_J * cbrt_J);  // J^{-2/3}
@@ -77,6 +78,11 @@ void add_isochoric(const UncoupledMaterial& material, const Kinematics& k, Point
 
   out.energy += w.energy;
   out.stress += w.d1 * dI1b;
+  const Mat3 dI2 = 2.0 * (k.I1 * k.F - k.F * k.C);
+  const Mat3 dI2b = a2 * (dI2 - (4.0 / 3.0) * k.I2 * k.T);
+  if (uses_I2) out.stress += w.d2 * dI2b;
+  if (!with_tangent) return;
+
   Mat9& A = out.tangent;
   A.noalias() += (w.d11 * u1) * u1.transpose();
 
@@ -89,10 +95,7 @@ void add_isochoric(const UncoupledMaterial& material, const Kinematics& k, Point
 
   if (!uses_I2) return;
 
-  const Mat3 dI2 = 2.0 * (k.I1 * k.F - k.F * k.C);
-  const Mat3 dI2b = a2 * (dI2 - (4.0 / 3.0) * k.I2 * k.T);
   const Vec9 u2 = flatten(dI2b);
-  out.stress += w.d2 * dI2b;
   add_sym_outer(A, w.d12, u1, u2);
   A.noalias() += (w.d22 * u2) * u2.transpose();
 
@@ -109,20 +112,22 @@ void add_isochoric(const UncoupledMaterial& material, const Kinematics& k, Point
   add_cross(A, (4.0 / 3.0) * s2 * k.I2, k.T);
 }
 
-void add_volumetric(const VolumetricResponse& u, const Kinematics& k, PointResponse& out) {
-  const Vec9 t = flatten(k.T);
+void add_volumetric(const VolumetricResponse& u, const Kinematics& k, bool with_tangent,
+                    PointResponse& out) {
   out.energy += u.energy;
   out.stress += (u.first * k.J) * k.T;
+  if (!with_tangent) return;
+  const Vec9 t = flatten(k.T);
   // U'' (J T) (x) (J T) + U' J (T (x) T - T_iL T_kJ).
   out.tangent.noalias() += ((u.second * k.J * k.J + u.first * k.J) * t) * t.transpose();
   add_cross(out.tangent, -u.first * k.J, k.T);
 }
 
-PointResponse zero_response() {
+PointResponse zero_response(bool with_tangent) {
   PointResponse r;
   r.energy = 0.0;
   r.stress.setZero();
-  r.tangent.setZero();
+  if (with_tangent) r.tangent.setZero();
   return r;
 }
 
@@ -154,20 +159,20 @@ VolumetricResponse UncoupledMaterial::volumetric(double J) const {
   return u;
 }
 
-PointResponse UncoupledMaterial::isochoric_response(const Mat3& F) const {
+PointResponse UncoupledMaterial::isochoric_response(const Mat3& F, bool with_tangent) const {
   const Kinematics k(F);
   if (!(k.J > 0.0)) return inverted_response();
-  PointResponse r = zero_response();
-  add_isochoric(*this, k, r);
+  PointResponse r = zero_response(with_tangent);
+  add_isochoric(*this, k, with_tangent, r);
   return r;
 }
 
-PointResponse UncoupledMaterial::response(const Mat3& F) const {
+PointResponse UncoupledMaterial::response(const Mat3& F, bool with_tangent) const {
   const Kinematics k(F);
   if (!(k.J > 0.0)) return inverted_response();
-  PointResponse r = zero_response();
-  add_isochoric(*this, k, r);
-  add_volumetric(volumetric(k.J), k, r);
+  PointResponse r = zero_response(with_tangent);
+  add_isochoric(*this, k, with_tangent, r);
+  add_volumetric(volumetric(k.J), k, with_tangent, r);
   return r;
 }
 

@@ -67,14 +67,21 @@ FactorizationReport CholmodSolver::factorize(const SymmetricMatrix& matrix) {
   std::copy(matrix.values().begin(), matrix.values().end(), static_cast<double*>(impl_->matrix->x));
 
   FactorizationReport report;
+  // CHOLMOD factorizes NaN entries without complaint, into a NaN factor: refuse them here.
+  const bool finite = std::all_of(matrix.values().begin(), matrix.values().end(),
+                                  [](double v) { return std::isfinite(v); });
   double max_diagonal = 0.0;
   for (int i = 0; i < pattern_->size; ++i)
     max_diagonal = std::max(max_diagonal, std::abs(matrix.diagonal(i)));
 
-  // Shifts tried after a failure, relative to the largest diagonal entry: small enough not to
-  // slow Newton much when the loss of definiteness is marginal, large enough to win otherwise.
-  constexpr double kRelativeShifts[] = {0.0, 1e-10, 1e-8, 1e-6, 1e-4, 1e-2, 1.0};
+  // Shifts tried after a failure, relative to the largest diagonal entry, in steps of 10: the
+  // smallest that works changes Newton's direction least. The last, 10x the largest diagonal,
+  // exceeds the most negative eigenvalue of any tangent whose indefiniteness is not larger
+  // than its own diagonal (Gershgorin bounds the eigenvalues by diagonal plus row sums).
+  constexpr double kRelativeShifts[] = {0.0,  1e-10, 1e-9, 1e-8, 1e-7, 1e-6, 1e-5,
+                                        1e-4, 1e-3,  1e-2, 1e-1, 1.0,  10.0};
   for (double relative : kRelativeShifts) {
+    if (!finite) break;
     ++report.attempts;
     double beta[2] = {relative * max_diagonal, 0.0};
     cholmod_factorize_p(impl_->matrix, beta, nullptr, 0, impl_->factor, &c);

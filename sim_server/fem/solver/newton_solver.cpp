@@ -73,6 +73,11 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, Vector& x) {
     auto start = Clock::now();
     const Vector dx = -linear_solver_.solve(r);
     report.solve_seconds += seconds_since(start);
+    if (!all_finite(dx)) {
+      report.failure = "the linear solve gave a non-finite correction";
+      factor_age_ = -1;
+      return report;
+    }
     ++factor_age_;
 
     // Secant line search on s(eta) = dx . r(x + eta dx): step back from configurations that
