@@ -1,7 +1,7 @@
 // sim_batch SCENE.yaml [--output FILE] [--quiet]
 //
 // Runs a scene to the end without a message bus and logs it to an HDF5 run file: a static
-// analysis (the rest frame and the equilibrium) or a dynamic one (optionally settled under its
+// analysis (the rest frame and each load increment) or a dynamic one (optionally settled under its
 // loads first, then steps of dt until the duration, every k-th step logged).
 //
 // Exit status: 0 done; 1 bad command line, scene error or I/O error; 2 a step or load increment
@@ -152,24 +152,27 @@ class BatchRun {
  private:
   bool is_dynamic() const { return scene_.analysis.type == scene::AnalysisType::dynamic; }
 
-  // Static equilibrium by load stepping: solve_static reports every increment but hands back
-  // only the final state, so the run file holds the rest frame and the equilibrium.
+  // Static equilibrium by load stepping: the rest frame, then one frame per load increment.
   int run_static() {
     fem::Vector u = fem::Vector::Zero(built_.solid->num_dofs());
     write_frame(0.0, u, {});
-    const fem::StaticReport report = fem::solve_static(*built_.system, u, built_.static_settings);
     Tally tally;
     header("incr", "lambda [1]");
-    for (const fem::StepReport& inc : report.increments) {
-      tally.add(inc);
-      step_line(tally.steps, inc.time, inc);
-    }
+    // One frame per accepted load increment, written as it is reached: a failure later keeps
+    // everything up to the last accepted increment.
+    const fem::StaticReport report = fem::solve_static(
+        *built_.system, u, built_.static_settings,
+        [&](const fem::StepReport& inc, const fem::Vector& reached) {
+          Tally one;
+          one.add(inc);
+          tally.add(inc);
+          step_line(tally.steps, inc.time, inc);
+          track(reached);
+          write_frame(inc.time, reached, one.figures());
+        });
     total_.steps += tally.steps;
     total_.iterations += tally.iterations;
     total_.cuts += tally.cuts;
-    track(u);
-    // On failure u is the last accepted increment: keep it, at its load factor.
-    if (!report.increments.empty()) write_frame(report.increments.back().time, u, tally.figures());
     if (!report.converged) {
       failure_ = report.message;
       std::fprintf(stderr, "sim_batch: static solution failed: %s\n", report.message.c_str());
