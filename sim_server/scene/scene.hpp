@@ -29,8 +29,10 @@
 //     - {set: clamped, components: [x, y, z]}            # displacement default 0 (fixed)
 //     - {set: tip, components: [z], displacement: 0.0}   # m; a number, or one per component
 //   gravity: [0, -9.81, 0]         # m/s^2; optional (none when omitted)
-//   loads:                         # optional; uniform traction on the boundary faces whose four
-//     - {set: x_max, total_force: [0, -0.01, 0]}   # nodes are all in the set; N in total
+//   loads:                         # optional; one of total_force / force_per_node each
+//     - {set: x_max, total_force: [0, -0.01, 0]}   # N in total, a uniform traction on the
+//                                                  # boundary faces whose nodes are all in the set
+//     - {set: tip, force_per_node: [0, 0, 0.001]}  # N on every node of the set
 //   damping: {alpha: 0.0, beta: 0.028}   # Rayleigh C = alpha M + beta K0, 1/s and s; optional.
 //                                        # K0: tangent at the initial (settled or rest) state
 //   analysis:                      # required
@@ -101,9 +103,13 @@ struct ConstraintSpec {
   std::vector<double> displacements;  // m, one per component
 };
 
-struct SurfaceLoadSpec {
+// A dead load on a node set: either a total force spread as a uniform traction over the boundary
+// faces whose four nodes are all in the set, or the same force on every node of the set.
+struct LoadSpec {
+  enum class Kind { total_force, force_per_node };
   std::string set;
-  fem::Vec3 total_force = fem::Vec3::Zero();  // N
+  Kind kind = Kind::total_force;
+  fem::Vec3 force = fem::Vec3::Zero();  // N
 };
 
 enum class AnalysisType { static_equilibrium, dynamic };
@@ -134,7 +140,7 @@ struct Scene {
   std::vector<NodeSetSpec> node_sets;  // in file order
   std::vector<ConstraintSpec> constraints;
   std::optional<fem::Vec3> gravity;  // m/s^2
-  std::vector<SurfaceLoadSpec> loads;
+  std::vector<LoadSpec> loads;
   fem::RayleighDamping damping;  // zero coefficients: no damping
   AnalysisSpec analysis;
   fem::NewtonSettings solver;

@@ -58,17 +58,22 @@ class Builder {
           "gravity", built.solid->body_force(*scene_.gravity)));
     }
     for (std::size_t i = 0; i < scene_.loads.size(); ++i) {
-      const SurfaceLoadSpec& load = scene_.loads[i];
+      const LoadSpec& load = scene_.loads[i];
       const std::string path = "loads[" + std::to_string(i) + "].set";
-      const std::vector<int>& nodes = built.solid->mesh().node_set(load.set);
-      fem::Vector force;
-      try {
-        force = fem::uniform_surface_force(built.solid->mesh(), nodes, load.total_force);
-      } catch (const std::invalid_argument& e) {
-        fail(path, "node set '" + load.set + "': " + e.what());
+      const fem::Mesh& mesh = built.solid->mesh();
+      const std::vector<int>& nodes = mesh.node_set(load.set);
+      fem::Vector force = fem::Vector::Zero(3 * mesh.num_nodes());
+      if (load.kind == LoadSpec::Kind::force_per_node) {
+        for (int n : nodes) force.segment<3>(3 * n) = load.force;
+      } else {
+        try {
+          force = fem::uniform_surface_force(mesh, nodes, load.force);
+        } catch (const std::invalid_argument& e) {
+          fail(path, "node set '" + load.set + "': " + e.what());
+        }
       }
       built.system->add_load(
-          std::make_shared<fem::ConstantForce>("surface load on " + load.set, std::move(force)));
+          std::make_shared<fem::ConstantForce>("load on " + load.set, std::move(force)));
     }
 
     const AnalysisSpec& a = scene_.analysis;

@@ -423,11 +423,19 @@ class Parser {
       const YAML::Node l = n[i];
       const std::string l_path = index_path(path, i);
       expect_map(l, l_path);
-      check_keys(l, l_path, {"set", "total_force"});
-      SurfaceLoadSpec spec;
+      check_keys(l, l_path, {"set", "total_force", "force_per_node"});
+      LoadSpec spec;
       spec.set = text(required(l, l_path, "set"), child_path(l_path, "set"));
-      spec.total_force =
-          vec3(required(l, l_path, "total_force"), child_path(l_path, "total_force"));
+      const bool total = present(l["total_force"]), per_node = present(l["force_per_node"]);
+      if (total == per_node) {
+        fail(l_path,
+             "give exactly one of total_force (N, spread over the set's boundary faces) "
+             "and force_per_node (N on each node)",
+             l);
+      }
+      spec.kind = total ? LoadSpec::Kind::total_force : LoadSpec::Kind::force_per_node;
+      const char* key = total ? "total_force" : "force_per_node";
+      spec.force = vec3(l[key], child_path(l_path, key));
       scene.loads.push_back(std::move(spec));
     }
   }

@@ -124,6 +124,20 @@ loads:
   }
 }
 
+TEST(SceneBuilder, ForcePerNodeActsOnEveryNodeOfTheSet) {
+  const BuiltScene built = build(R"(
+loads:
+  - {set: x_max, force_per_node: [0, 0, 0.003]}
+)");
+  const fem::Vector& f = constant_load(built, 0).force();
+  const auto& face = built.solid->mesh().node_set("x_max");
+  for (int n = 0; n < built.solid->mesh().num_nodes(); ++n) {
+    const bool on_face = std::binary_search(face.begin(), face.end(), n);
+    EXPECT_EQ(f.segment<3>(3 * n), on_face ? fem::Vec3(0, 0, 0.003) : fem::Vec3::Zero())
+        << "node " << n;
+  }
+}
+
 TEST(SceneBuilder, SceneNodeSetsAreResolvedIntoTheMesh) {
   const BuiltScene built = build(R"(
 node_sets:

@@ -143,7 +143,7 @@ output: {file: logs/x.h5, every: 5}
   ASSERT_TRUE(s.gravity);
   EXPECT_EQ(*s.gravity, fem::Vec3(0, -9.81, 0));
   ASSERT_EQ(s.loads.size(), 1u);
-  EXPECT_EQ(s.loads[0].total_force, fem::Vec3(0, -0.01, 0));
+  EXPECT_EQ(s.loads[0].force, fem::Vec3(0, -0.01, 0));
   EXPECT_DOUBLE_EQ(s.damping.mass_coefficient, 0.5);
   EXPECT_DOUBLE_EQ(s.damping.stiffness_coefficient, 0.028);
   EXPECT_EQ(s.analysis.type, AnalysisType::dynamic);
@@ -448,6 +448,14 @@ TEST(SceneErrors, UnknownSetInConstraint) {
 TEST(SceneErrors, UnknownSetInLoad) {
   expect_error(std::string(kMinimal) + "loads:\n  - {set: tip, total_force: [0, -1, 0]}\n",
                "loads[0].set", "unknown node set 'tip'");
+}
+
+TEST(SceneErrors, LoadWithBothOrNeitherForceKind) {
+  expect_error(std::string(kMinimal) +
+                   "loads:\n  - {set: x_max, total_force: [0, -1, 0], force_per_node: [0, 1, 0]}\n",
+               "loads[0]", "exactly one of total_force");
+  expect_error(std::string(kMinimal) + "loads:\n  - {set: x_max}\n", "loads[0]",
+               "exactly one of total_force");
 }
 
 TEST(SceneErrors, UnknownSetInUnion) {
