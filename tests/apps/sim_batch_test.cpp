@@ -8,10 +8,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <sstream>
 #include <string>
 #include <vector>
+
+#include "support/temp_dir_test.hpp"
 
 #ifndef SIM_BATCH_PATH
 #error "SIM_BATCH_PATH must name the sim_batch executable"
@@ -52,24 +53,9 @@ std::string read_text(const fs::path& p) {
   return s.str();
 }
 
-class SimBatch : public ::testing::Test {
+class SimBatch : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("sim_batch_tests_" + std::string(info->name()) + "_" +
-                                        std::to_string(std::random_device{}()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-
-  fs::path write_scene(const std::string& text) const {
-    const fs::path p = dir_ / "scene.yaml";
-    std::ofstream(p) << text;
-    return p;
-  }
+  fs::path write_scene(const std::string& text) const { return write("scene.yaml", text); }
 
   RunResult run(const std::string& args) const {
     const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
@@ -82,8 +68,6 @@ class SimBatch : public ::testing::Test {
     r.err = read_text(err);
     return r;
   }
-
-  fs::path dir_;
 };
 
 // Minimal read-only access to a run file.

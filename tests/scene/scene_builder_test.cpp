@@ -4,12 +4,12 @@
 
 #include <filesystem>
 #include <fstream>
-#include <random>
 #include <sstream>
 #include <string>
 
 #include "fem/assembly/loads.hpp"
 #include "scene/scene_reader.hpp"
+#include "support/temp_dir_test.hpp"
 
 namespace tongue::scene {
 namespace {
@@ -221,13 +221,10 @@ loads:
                      "loads[0].set", "boundary face");
 }
 
-class AnsysScene : public ::testing::Test {
+class AnsysScene : public testing::TempDirTest {
  protected:
   void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("scene_builder_tests_" + std::string(info->name()) + "_" +
-                                        std::to_string(std::random_device{}()));
-    fs::create_directories(dir_);
+    TempDirTest::SetUp();
     // Two unit-mm cubes along x, node ids 100.., element 1 of material 1 and 2 of material 2.
     std::ostringstream nodes, elements;
     for (int k = 0; k < 2; ++k)
@@ -240,12 +237,8 @@ class AnsysScene : public ::testing::Test {
                  << id(e, 1, k) << " ";
       elements << (e + 1) << " 1 1 0 0 " << (e + 1) << "\n";
     }
-    std::ofstream(dir_ / "t.node") << nodes.str();
-    std::ofstream(dir_ / "t.elem") << elements.str();
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
+    write("t.node", nodes.str());
+    write("t.elem", elements.str());
   }
   static int id(int i, int j, int k) { return 100 + i + 3 * (j + 2 * k); }
 
@@ -257,7 +250,6 @@ analysis: {type: static}
 )" + extra,
                        dir_.string(), "ansys.yaml");
   }
-  fs::path dir_;
 };
 
 TEST_F(AnsysScene, IdsMaterialSetsAndLengthScale) {

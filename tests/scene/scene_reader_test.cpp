@@ -3,9 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <random>
 #include <string>
+
+#include "support/temp_dir_test.hpp"
 
 namespace tongue::scene {
 namespace {
@@ -41,24 +41,7 @@ void expect_error(const std::string& text, const std::string& key_path,
 }
 
 // A fresh temporary directory per test, for mesh files and scene files.
-class TempDir : public ::testing::Test {
- protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / ("scene_tests_" + std::string(info->name()) + "_" +
-                                        std::to_string(std::random_device{}()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(dir_ / name) << text;
-    return (dir_ / name).string();
-  }
-  fs::path dir_;
-};
+class TempDir : public testing::TempDirTest {};
 
 TEST(SceneReader, MinimalSceneGetsDefaults) {
   const Scene s = parse_scene(kMinimal, "", "test.yaml");

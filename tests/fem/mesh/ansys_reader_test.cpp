@@ -3,11 +3,10 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <fstream>
-#include <random>
 #include <string>
 
 #include "fem/mesh/mesh_quality.hpp"
+#include "support/temp_dir_test.hpp"
 
 namespace tongue::fem {
 namespace {
@@ -15,25 +14,8 @@ namespace {
 namespace fs = std::filesystem;
 
 // Each test writes its files into its own fresh directory under the system temp dir.
-class AnsysReader : public ::testing::Test {
+class AnsysReader : public testing::TempDirTest {
  protected:
-  void SetUp() override {
-    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-    dir_ = fs::temp_directory_path() / (std::string("fem_mesh_tests_") + info->name() + "_" +
-                                        std::to_string(std::random_device{}()));
-    fs::create_directories(dir_);
-  }
-  void TearDown() override {
-    std::error_code ec;
-    fs::remove_all(dir_, ec);
-  }
-
-  std::string write(const std::string& name, const std::string& text) const {
-    const fs::path p = dir_ / name;
-    std::ofstream(p) << text;
-    return p.string();
-  }
-
   // Reads and expects a MeshReadError whose message names the file and the line.
   void expect_error(const std::string& nodes, const std::string& elements,
                     const std::string& bad_file, int line) const {
@@ -50,8 +32,6 @@ class AnsysReader : public ::testing::Test {
       }
     }
   }
-
-  fs::path dir_;
 };
 
 // Two unit cubes side by side in x, node ids 11..13 / 21..23 style (non-contiguous, unsorted),
