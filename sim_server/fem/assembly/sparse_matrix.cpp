@@ -1,6 +1,8 @@
 #include "fem/assembly/sparse_matrix.hpp"
 
 #include <algorithm>
+#include <stdexcept>
+#include <string>
 
 namespace tongue::fem {
 
@@ -115,6 +117,31 @@ Eigen::MatrixXd SymmetricMatrix::to_dense() const {
     }
   }
   return d;
+}
+
+void add_node_block(SymmetricMatrix& K, const DofMap& dofs, int node_a, int node_b,
+                    const Mat3& block) {
+  const SparsityPattern& p = K.pattern();
+  std::vector<double>& values = K.values();
+  for (int c = 0; c < 3; ++c) {
+    const int i = dofs.free_index(3 * node_a + c);
+    if (i < 0) continue;
+    // On the diagonal block, d < c would be the lower triangle (free numbering follows dof order).
+    for (int d = node_a == node_b ? c : 0; d < 3; ++d) {
+      const int j = dofs.free_index(3 * node_b + d);
+      if (j < 0) continue;
+      // Entry (i, j) and its mirror (j, i) share one stored value; for a != b every stored entry
+      // of the coupling is reached exactly once, from whichever side lies in the upper triangle.
+      const int k = p.find(std::min(i, j), std::max(i, j));
+      if (k < 0) {
+        throw std::logic_error("add_node_block: nodes " + std::to_string(node_a) + " and " +
+                               std::to_string(node_b) +
+                               " are not coupled in the sparsity pattern (share no element and "
+                               "are not in extra_node_pairs)");
+      }
+      values[k] += block(c, d);
+    }
+  }
 }
 
 }  // namespace tongue::fem

@@ -57,4 +57,17 @@ class SymmetricMatrix {
   std::vector<double> values_;
 };
 
+// Adds a 3 x 3 block coupling two nodes to K (free dofs only; rows or columns of prescribed dofs
+// are skipped). block(c, d) is d2E / du_{a,c} du_{b,d}: row component c of node_a, column
+// component d of node_b.
+//  - node_a == node_b: the diagonal block; it must be symmetric and only its entries with
+//    c <= d are read (those are the ones the upper-triangle storage holds).
+//  - node_a != node_b: adds block at (node_a, node_b) AND its transpose at (node_b, node_a),
+//    i.e. the full symmetric coupling. Call it once per pair: calling it also for (b, a) with
+//    block^T would add the coupling twice.
+// Throws std::logic_error when a needed entry is not in the pattern: the pattern must have been
+// built with the pair in extra_node_pairs, or the nodes must share an element.
+void add_node_block(SymmetricMatrix& K, const DofMap& dofs, int node_a, int node_b,
+                    const Mat3& block);
+
 }  // namespace tongue::fem

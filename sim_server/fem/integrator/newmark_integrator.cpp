@@ -88,15 +88,21 @@ void NewmarkIntegrator::initialize(const Vector& u0, const Vector& v0, double t0
   t_ = t0;
   Vector r_full;
   const RayleighDamping& d = settings_.damping;
-  SymmetricMatrix K0(system_.solid().pattern());
-  if (!system_.residual(u_, 1.0, r_full, d.stiffness_coefficient != 0.0 ? &K0 : nullptr).ok) {
+  if (!system_.residual(u_, 1.0, r_full, nullptr).ok) {
     throw std::runtime_error("initial state has an inverted element");
   }
   damping_.reset();
   if (d.active()) {
     damping_.emplace(system_.solid().pattern());
     damping_->scale_and_add(0.0, d.mass_coefficient, mass_);
-    if (d.stiffness_coefficient != 0.0) damping_->scale_and_add(1.0, d.stiffness_coefficient, K0);
+    if (d.stiffness_coefficient != 0.0) {
+      // K0 is the solid's own tangent: the loads' (e.g. active muscles') stiffness at the start
+      // must not stay frozen in the damping for the whole run.
+      SymmetricMatrix K0(system_.solid().pattern());
+      Vector f_int;
+      system_.solid().assemble(u_, f_int, &K0);
+      damping_->scale_and_add(1.0, d.stiffness_coefficient, K0);
+    }
   }
   // M a0 = f_ext - f_int - C v0 over the free dofs.
   Vector rhs = -dofs.gather_free(r_full);

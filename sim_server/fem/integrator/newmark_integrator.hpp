@@ -5,7 +5,8 @@
 //   v_{n+1} = v_n + dt [(1 - gamma) a_n + gamma a_{n+1}],
 // each step solved for u_{n+1} by Newton. beta = 1/4, gamma = 1/2 (average acceleration) is
 // unconditionally stable and second-order accurate. Rayleigh damping C = alpha M + beta_R K0,
-// with K0 the tangent stiffness at the state the integrator is initialized in (for the tongue:
+// with K0 the solid's tangent stiffness (without load stiffness) at the state the integrator is
+// initialized in (for the tongue:
 // the rest state under gravity): a constant C keeps the damping force linear in v and the
 // Newton tangent exact.
 #include <memory>
