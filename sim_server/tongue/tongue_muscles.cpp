@@ -75,6 +75,7 @@ class Placer {
   }
 
   const BonyAttachments& bones() const { return bones_; }
+  fem::Vec3 rest_position(int node) const { return g_.mesh.nodes[node]; }
 
  private:
   template <class F>
@@ -149,10 +150,12 @@ void place(const Placer& p, const std::string& group, Side side, Muscle& mu) {
     return;
   }
   if (group == "IL") {
-    // Low, from the underside of the tip back to the root, beside the genioglossus (II.2.5).
-    mu.elements = p.elements(0, 12, 1, 3, 1, 3, side);
+    // Low in the body, from the underside of the tip back to the root and on to the hyoid,
+    // beside the genioglossus (sec. II.2.5); kept away from the small elements at the insertion.
+    mu.elements = p.elements(0, 12, 2, 4, 1, 3, side);
     for (int off = 1 * m; off <= 3 * m; ++off)
-      mu.fibres.push_back({p.along_i(0, 12 * m, 2 * m, p.lateral(side, off)), {}, 1.0});
+      mu.fibres.push_back({p.along_i(12 * m, 0, 3 * m, p.lateral(side, off)),
+                           p.mirrored(p.bones().hyoid_body, side), 1.0});
     return;
   }
   if (group == "T") {
@@ -173,11 +176,18 @@ void place(const Placer& p, const std::string& group, Side side, Muscle& mu) {
     return;
   }
   if (group == "MH") {
-    // The floor behind the insertion, fibres side to side (sec. II.2.8).
+    // The floor behind the insertion, fibres from the mandible's inner side to the midline
+    // (sec. II.2.8; Netter 1989): the floor hangs between the two mandible attachments, which lie
+    // beside and a little above it, so the muscle lifts the floor as it shortens.
     mu.elements = p.elements(11, 12, 0, 4, 0, 5, side);
-    for (int j = 1 * m; j <= 4 * m; ++j)
-      mu.fibres.push_back(
-          {p.along_k(p.lateral(side, 5 * m), p.lateral(side, 0), 12 * m, j), {}, 1.0});
+    for (int j = 1 * m; j <= 4 * m; ++j) {
+      const std::vector<int> nodes =
+          p.along_k(p.lateral(side, 5 * m), p.lateral(side, 0), 12 * m, j);
+      fem::Vec3 attachment = p.rest_position(nodes.front());
+      attachment.y() += p.bones().mylohyoid_line_rise;
+      attachment.z() += (side == Side::right ? -1.0 : 1.0) * p.bones().mylohyoid_line_offset;
+      mu.fibres.push_back({nodes, attachment, 1.0});
+    }
     return;
   }
 }
