@@ -167,10 +167,10 @@ void place(const Placer& p, const std::string& group, Side side, Muscle& mu) {
     return;
   }
   if (group == "V") {
-    // Vertical (radial here) from the underside to the dorsum, tip to velar region, none near
-    // the midline (sec. II.2.7).
-    mu.elements = p.elements(0, 8, 1, 6, 2, 5, side);
-    for (int i = 0; i <= 8 * m; ++i)
+    // From the underside up to the dorsum, tip to mid-tongue, none near the midline
+    // (sec. II.2.7); radial lines within about 40 degrees of vertical.
+    mu.elements = p.elements(0, 6, 1, 6, 2, 5, side);
+    for (int i = 0; i <= 6 * m; ++i)
       for (int off = 2 * m; off <= 5 * m; ++off)
         mu.fibres.push_back({p.along_j(1 * m, 6 * m, i, p.lateral(side, off)), {}, 1.0});
     return;
