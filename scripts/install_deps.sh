@@ -12,6 +12,7 @@ packages=(
   libyaml-cpp-dev                  # scene files
   libgtest-dev                     # GoogleTest
   python3 python3-h5py python3-numpy  # reading run logs back in tests and scripts
+  python3-matplotlib               # scripts/draw_midsagittal.py
 )
 
 missing=()

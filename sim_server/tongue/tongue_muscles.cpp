@@ -124,7 +124,7 @@ void place(const Placer& p, const std::string& group, Side side, Muscle& mu) {
   if (group == "SG") {
     // From the styloid process into the side of the tongue at the back; one group runs forward
     // along the side to the tip, one inward to the midline (sec. II.2.3).
-    mu.elements = p.elements(0, 9, 2, 6, 4, 5, side);
+    mu.elements = p.elements(0, 9, 0, 6, 3, 5, side);
     const auto inward = p.elements(7, 9, 4, 6, 0, 5, side);
     mu.elements.insert(mu.elements.end(), inward.begin(), inward.end());
     std::sort(mu.elements.begin(), mu.elements.end());
@@ -134,9 +134,9 @@ void place(const Placer& p, const std::string& group, Side side, Muscle& mu) {
     // the back to the side of the tip, not the dorsum's arc. Each fibre enters at its own node so
     // that the pull of the styloid is spread, not concentrated on one node.
     for (int j = 3 * m; j <= 5 * m; ++j)
-      for (int off = 4 * m; off <= 5 * m; ++off)
+      for (int off = 3 * m; off <= 5 * m; ++off)
         mu.fibres.push_back(
-            {p.diagonal(8 * m, j, 0, j - 3 * m, p.lateral(side, off)), styloid, 1.0});
+            {p.diagonal(8 * m, j, 1 * m, j - 3 * m, p.lateral(side, off)), styloid, 1.0});
     for (int j = 4 * m; j <= 5 * m; ++j)
       mu.fibres.push_back(
           {p.along_k(p.lateral(side, 5 * m), p.lateral(side, 0), 8 * m, j), styloid, 1.0});
@@ -153,9 +153,11 @@ void place(const Placer& p, const std::string& group, Side side, Muscle& mu) {
     // Low in the body, from the underside of the tip back to the root and on to the hyoid,
     // beside the genioglossus (sec. II.2.5); kept away from the small elements at the insertion.
     mu.elements = p.elements(0, 12, 2, 4, 1, 3, side);
-    for (int off = 1 * m; off <= 3 * m; ++off)
-      mu.fibres.push_back({p.along_i(12 * m, 0, 3 * m, p.lateral(side, off)),
-                           p.mirrored(p.bones().hyoid_body, side), 1.0});
+    // Nine fibres ending at distinct nodes under the tip: the pull spread over the insertion.
+    for (int j = 2 * m; j <= 4 * m; ++j)
+      for (int off = 1 * m; off <= 3 * m; ++off)
+        mu.fibres.push_back({p.along_i(12 * m, 0, j, p.lateral(side, off)),
+                             p.mirrored(p.bones().hyoid_body, side), 1.0});
     return;
   }
   if (group == "T") {

@@ -143,8 +143,8 @@ TEST_F(TongueMuscles, StyloglossusComesFromTheStyloidForwardAlongTheSides) {
     const fem::Vec3 first = x(f.nodes.front()), last = x(f.nodes.back());
     if (last.x() > first.x() + 0.03) {  // the forward group: more than 30 mm toward the tip
       ++forward;
-      // Along the side: in the two outermost lateral node layers (lateral fraction >= 0.88).
-      for (int n : f.nodes) EXPECT_GE(n / layer_size, g.midline() + 4 * g.refinement);
+      // Along the side: in the three outermost lateral node layers (lateral fraction >= 0.75).
+      for (int n : f.nodes) EXPECT_GE(n / layer_size, g.midline() + 3 * g.refinement);
     }
   }
   EXPECT_GT(forward, 0);
