@@ -11,9 +11,7 @@
 
 namespace tongue::fem {
 
-namespace {
-
-hex8::ElementCoords coords_of(const Mesh& mesh, int element) {
+hex8::ElementCoords element_coords(const Mesh& mesh, int element) {
   if (element < 0 || element >= mesh.num_elements()) {
     throw std::out_of_range("element index " + std::to_string(element) + " out of range [0, " +
                             std::to_string(mesh.num_elements()) + ")");
@@ -24,10 +22,8 @@ hex8::ElementCoords coords_of(const Mesh& mesh, int element) {
   return X;
 }
 
-}  // namespace
-
 std::array<double, 8> nodal_jacobian_determinants(const Mesh& mesh, int element) {
-  const hex8::ElementCoords X = coords_of(mesh, element);
+  const hex8::ElementCoords X = element_coords(mesh, element);
   std::array<double, 8> dets{};
   for (int a = 0; a < 8; ++a) {
     const auto& c = hex8::kNodeCoords[a];
@@ -42,7 +38,7 @@ bool is_regular(const Mesh& mesh, int element) {
 }
 
 double element_volume(const Mesh& mesh, int element) {
-  const hex8::ElementCoords X = coords_of(mesh, element);
+  const hex8::ElementCoords X = element_coords(mesh, element);
   double volume = 0.0;
   for (const auto& qp : hex8::gauss_2x2x2()) {
     volume += qp.weight * hex8::jacobian(X, qp.xi).determinant();

@@ -5,9 +5,14 @@
 #include <array>
 #include <vector>
 
+#include "fem/element/hex8_shape.hpp"
 #include "fem/mesh/mesh.hpp"
 
 namespace tongue::fem {
+
+// The rest positions of one element's 8 nodes (row a = node a); throws std::out_of_range for a
+// bad element index.
+hex8::ElementCoords element_coords(const Mesh& mesh, int element);
 
 // det(dX/dxi) at each corner xi = hex8::kNodeCoords[a], a = 0..7. For an undistorted cube of
 // side h every entry is (h / 2)^3. Throws std::out_of_range for a bad element index.

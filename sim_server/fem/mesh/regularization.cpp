@@ -47,16 +47,6 @@ double corner_sign_factor(int corner) {
   return -(s[0] * s[1] * s[2]) / 8.0;
 }
 
-hex8::ElementCoords coords_of(const Mesh& mesh, int element) {
-  if (element < 0 || element >= mesh.num_elements()) {
-    throw std::out_of_range("element index " + std::to_string(element) + " out of range [0, " +
-                            std::to_string(mesh.num_elements()) + ")");
-  }
-  hex8::ElementCoords X;
-  const Hex8& nodes = mesh.elements[element];
-  for (int a = 0; a < 8; ++a) X.row(a) = mesh.nodes.at(nodes[a]).transpose();
-  return X;
-}
 
 // Mean edge length along each reference direction: the 4 edges along xi_k join the corners with
 // s_k = -1 to their neighbour along k.
@@ -135,7 +125,7 @@ hex8::ElementCoords nodal_jacobian_gradient(const hex8::ElementCoords& X, int co
 
 hex8::ElementCoords nodal_jacobian_gradient(const Mesh& mesh, int element, int corner) {
   check_corner(corner);
-  return nodal_jacobian_gradient(coords_of(mesh, element), corner);
+  return nodal_jacobian_gradient(element_coords(mesh, element), corner);
 }
 
 namespace {
@@ -222,7 +212,7 @@ class Sweeps {
     smallest_scale_ = std::numeric_limits<double>::infinity();
     int newly_corrected = 0;
     for (int e = 0; e < mesh_.num_elements(); ++e) {
-      const hex8::ElementCoords X = coords_of(mesh_, e);
+      const hex8::ElementCoords X = element_coords(mesh_, e);
       std::array<double, 8> D{};
       for (int a = 0; a < 8; ++a) D[a] = nodal_jacobian_determinant(X, a);
       if (*std::min_element(D.begin(), D.end()) <= 0 && !corrected_[e]) {
@@ -327,7 +317,7 @@ RegularizationReport regularize(Mesh& mesh, const RegularizationSettings& settin
     }
     fixed[n] = 1;
   }
-  for (int e = 0; e < mesh.num_elements(); ++e) (void)coords_of(mesh, e);  // node indices valid
+  for (int e = 0; e < mesh.num_elements(); ++e) (void)element_coords(mesh, e);  // node indices valid
 
   RegularizationReport report;
   report.irregular_before = static_cast<int>(irregular_elements(mesh).size());
