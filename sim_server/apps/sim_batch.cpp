@@ -2,7 +2,9 @@
 //
 // Runs a scene to the end without a message bus and logs it to an HDF5 run file: a static
 // analysis (the rest frame and each load increment) or a dynamic one (optionally settled under its
-// loads first, then steps of dt until the duration, every k-th step logged).
+// loads first, then steps of dt until the duration, every k-th step logged). Muscles follow the
+// scene's activation schedule: a dynamic step to t_{n+1} uses the levels at t_{n+1} (the initial
+// state, settling included, has every muscle off), a static solve those at t = 0.
 //
 // Exit status: 0 done; 1 bad command line, scene error or I/O error; 2 a step or load increment
 // failed to converge even after cuts (the frames written so far are kept); 130 interrupted.
@@ -22,6 +24,7 @@
 #include "logging/position_log.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_reader.hpp"
+#include "tongue/default_tongue.hpp"
 
 namespace tongue::apps {
 namespace {
@@ -111,15 +114,25 @@ class BatchRun {
       // A static run's frames are load factors, not times. (assign, not = "1": GCC 12 warns
       // falsely about overlapping memcpy for a one-character literal.)
       if (!is_dynamic()) options.time_unit.assign(1, '1');
-      log_ = std::make_unique<logging::PositionLog>(output, solid.mesh(), scene_.text, options);
+      std::vector<logging::MuscleDescription> muscles;
+      if (built_.muscles)
+        for (const auto& m : built_.muscles->muscles()) muscles.push_back({m.name, m.max_force});
+      log_ = std::make_unique<logging::PositionLog>(output, solid.mesh(), scene_.text, options,
+                                                    muscles);
       log_->set_attribute("analysis", is_dynamic() ? "dynamic" : "static");
+      // What frame 0 shows, so that pictures can compare the end with rest under gravity.
+      log_->set_attribute("initial_state",
+                          is_dynamic() && scene_.analysis.settle
+                              ? "settled: static equilibrium under the loads, muscles off"
+                              : "reference: the rest positions");
       log_->set_attribute("status", "running");
     }
     std::printf(
-        "%s: %d nodes, %d hex8, %d free dofs, mass %.4g kg, volume %.4g cm^3, %s analysis\n",
+        "%s: %d nodes, %d hex8, %d free dofs, mass %.4g kg, volume %.4g cm^3, %d muscles, %s "
+        "analysis\n",
         scene_.source.c_str(), solid.mesh().num_nodes(), solid.mesh().num_elements(),
         solid.dofs().num_free(), solid.total_mass(), solid.reference_volume() * 1e6,
-        is_dynamic() ? "dynamic" : "static");
+        built_.muscles ? built_.muscles->num_muscles() : 0, is_dynamic() ? "dynamic" : "static");
     if (log_) {
       std::printf("run file: %s\n", output.c_str());
     } else {
@@ -155,21 +168,23 @@ class BatchRun {
   // Static equilibrium by load stepping: the rest frame, then one frame per load increment.
   int run_static() {
     fem::Vector u = fem::Vector::Zero(built_.solid->num_dofs());
-    write_frame(0.0, u, {});
+    set_activations(0.0);
+    initial_u_ = u;
+    write_frame(0.0, u, nullptr, {});
     Tally tally;
     header("incr", "lambda [1]");
     // One frame per accepted load increment, written as it is reached: a failure later keeps
     // everything up to the last accepted increment.
-    const fem::StaticReport report = fem::solve_static(
-        *built_.system, u, built_.static_settings,
-        [&](const fem::StepReport& inc, const fem::Vector& reached) {
-          Tally one;
-          one.add(inc);
-          tally.add(inc);
-          step_line(tally.steps, inc.time, inc);
-          track(reached);
-          write_frame(inc.time, reached, one.figures());
-        });
+    const fem::StaticReport report =
+        fem::solve_static(*built_.system, u, built_.static_settings,
+                          [&](const fem::StepReport& inc, const fem::Vector& reached) {
+                            Tally one;
+                            one.add(inc);
+                            tally.add(inc);
+                            step_line(tally.steps, inc.time, inc);
+                            track(reached);
+                            write_frame(inc.time, reached, nullptr, one.figures());
+                          });
     total_.steps += tally.steps;
     total_.iterations += tally.iterations;
     total_.cuts += tally.cuts;
@@ -187,6 +202,8 @@ class BatchRun {
     fem::Vector u = fem::Vector::Zero(n);
     Tally settle;
     if (a.settle) {
+      // Rest under gravity and loads is the state before any muscle acts (all levels are 0
+      // until the first step sets them).
       const fem::StaticReport report = fem::solve_static(*built_.system, u, built_.static_settings);
       for (const fem::StepReport& inc : report.increments) settle.add(inc);
       if (!quiet_)
@@ -202,11 +219,17 @@ class BatchRun {
       }
     }
     // Damping's K0 is the tangent where the integrator is initialized: the settled state if
-    // the scene settles, else the rest state.
+    // the scene settles, else the rest state. The initial acceleration is taken with every
+    // muscle off, and the muscles act from the first step on (levels at its end time): a step
+    // of force in a_0 would make the average-acceleration scheme's velocities flip sign from
+    // step to step in the stiff modes the fibre end forces excite.
+    if (built_.muscles)
+      built_.muscles->set_activations(fem::Vector::Zero(built_.muscles->num_muscles()));
     fem::NewmarkIntegrator integrator(*built_.system, built_.dynamic_settings);
-    if (a.settle) integrator.initialize(u, fem::Vector::Zero(n), 0.0);
+    integrator.initialize(u, fem::Vector::Zero(n), 0.0);
+    initial_u_ = integrator.displacement();
     track(integrator.displacement());
-    write_frame(0.0, integrator.displacement(), settle.figures());
+    write_frame(0.0, integrator.displacement(), &integrator.velocity(), settle.figures());
 
     const int count = scene::time_step_count(a);
     const int every = scene_.output.every;
@@ -218,7 +241,9 @@ class BatchRun {
         return kExitInterrupted;
       }
       const double t0 = integrator.time();
-      const fem::StepReport r = integrator.step(scene::time_step_length(a, s));
+      const double dt = scene::time_step_length(a, s);
+      set_activations(t0 + dt);
+      const fem::StepReport r = integrator.step(dt);
       since_frame.add(r);
       ++total_.steps;
       total_.iterations += r.iterations;
@@ -234,19 +259,36 @@ class BatchRun {
       simulated_ = integrator.time();
       track(integrator.displacement());
       if ((s + 1) % every == 0 || s + 1 == count) {
-        write_frame(integrator.time(), integrator.displacement(), since_frame.figures());
+        write_frame(integrator.time(), integrator.displacement(), &integrator.velocity(),
+                    since_frame.figures());
         since_frame = Tally{};
       }
     }
     return kExitOk;
   }
 
-  void write_frame(double time, const fem::Vector& u, const logging::SolverFigures& figures) {
-    if (log_) log_->append(time, built_.solid->rest_positions() + u, figures);
+  void set_activations(double t) {
+    if (built_.muscles) built_.muscles->set_activations(built_.activations.levels_at(t));
+  }
+
+  // v: nodal velocities, null for a static frame (at rest).
+  void write_frame(double time, const fem::Vector& u, const fem::Vector* v,
+                   const logging::SolverFigures& figures) {
+    if (!log_) return;
+    logging::MuscleFrame muscles;
+    if (built_.muscles) {
+      const model::MuscleForces& m = *built_.muscles;
+      muscles.activations = m.activations();
+      muscles.lengths = m.muscle_lengths(u);
+      muscles.velocities =
+          v ? m.muscle_velocities(u, *v) : fem::Vector::Zero(m.num_muscles()).eval();
+    }
+    log_->append(time, built_.solid->rest_positions() + u, figures, muscles);
   }
 
   // Largest nodal displacement and volume change seen so far.
   void track(const fem::Vector& u) {
+    last_u_ = u;
     final_displacement_ = 0.0;
     for (int node = 0; node < u.size() / 3; ++node)
       final_displacement_ = std::max(final_displacement_, u.segment<3>(3 * node).norm());
@@ -285,8 +327,31 @@ class BatchRun {
         "(largest |change| %.4f %%)\n",
         max_displacement_ * 1e3, final_displacement_ * 1e3, volume_change_ * 100.0,
         max_volume_change_ * 100.0);
+    landmarks();
     if (log_)
       std::printf("         run file %s: %d frames\n", log_->path().c_str(), log_->frames());
+  }
+
+  // Mean displacement of each landmark set the mesh has (the tongue's), from the first frame
+  // (the settled state when the scene settles) to the last state reached.
+  void landmarks() const {
+    if (initial_u_.size() == 0 || last_u_.size() != initial_u_.size()) return;
+    const fem::Mesh& mesh = built_.solid->mesh();
+    bool first = true;
+    for (const std::string& name : model::landmark_names()) {
+      const auto it = mesh.node_sets.find(name);
+      if (it == mesh.node_sets.end() || it->second.empty()) continue;
+      fem::Vec3 d = fem::Vec3::Zero();
+      for (int node : it->second)
+        d += last_u_.segment<3>(3 * node) - initial_u_.segment<3>(3 * node);
+      d /= static_cast<double>(it->second.size());
+      if (first)
+        std::printf("         landmark displacement since the first frame [mm]: %8s %8s %8s %8s\n",
+                    "dx", "dy", "dz", "|d|");
+      first = false;
+      std::printf("           %-47s %+8.3f %+8.3f %+8.3f %8.3f\n", name.c_str(), d.x() * 1e3,
+                  d.y() * 1e3, d.z() * 1e3, d.norm() * 1e3);
+    }
   }
 
   const scene::Scene& scene_;
@@ -298,6 +363,7 @@ class BatchRun {
   double wall_ = 0.0, simulated_ = 0.0;
   double max_displacement_ = 0.0, final_displacement_ = 0.0;  // m
   double volume_change_ = 0.0, max_volume_change_ = 0.0;      // relative
+  fem::Vector initial_u_, last_u_;                            // m, first frame and last state
 };
 
 int run(int argc, char** argv) {

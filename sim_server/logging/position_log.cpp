@@ -68,6 +68,7 @@ class Id {
 struct PositionLog::Handles {
   Id file;
   Id time, positions, iterations, residual, wall_time, cuts;
+  Id activations, muscle_length, muscle_velocity;  // only with muscles
 };
 
 namespace {
@@ -115,6 +116,23 @@ class Writer {
       check(H5Dwrite(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write " + name);
     describe(ds.get(), units, description);
     return ds;
+  }
+
+  // A fixed list of variable-length UTF-8 strings (h5py reads them as str).
+  void strings(hid_t loc, const std::string& name, const std::vector<std::string>& values,
+               const std::string& description) const {
+    const Id type = check(H5Tcopy(H5T_C_S1), H5Tclose, "copy a string type");
+    check(H5Tset_size(type.get(), H5T_VARIABLE), "set a string size");
+    check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "set a string encoding");
+    std::vector<const char*> data;
+    for (const auto& v : values) data.push_back(v.c_str());
+    fixed(loc, name, type.get(), type.get(), {static_cast<hsize_t>(values.size())}, data.data(),
+          "1", description);
+  }
+
+  Id group(hid_t loc, const std::string& name) const {
+    return check(H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                 "create group " + name);
   }
 
   // A dataset of frames [0 x frame_dims...], extendible along time, chunked chunk_frames at a
@@ -188,9 +206,11 @@ class Writer {
 }  // namespace
 
 PositionLog::PositionLog(const std::string& path, const fem::Mesh& mesh,
-                         const std::string& scene_text, const PositionLogOptions& options)
+                         const std::string& scene_text, const PositionLogOptions& options,
+                         const std::vector<MuscleDescription>& muscles)
     : path_(path),
       num_nodes_(mesh.num_nodes()),
+      num_muscles_(static_cast<int>(muscles.size())),
       flush_interval_(options.flush_interval),
       h_(std::make_unique<Handles>()) {
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();
@@ -223,6 +243,18 @@ PositionLog::PositionLog(const std::string& path, const fem::Mesh& mesh,
           "node positions of the reference configuration");
   w.fixed(file, "elements", H5T_STD_I32LE, H5T_NATIVE_INT, {e, 8}, elements.data(), "1",
           "hex8 connectivity: 0-based node indices, ANSYS SOLID185 node order");
+  // Named sets, so that a picture tool can find landmarks and colour muscles without the scene.
+  {
+    const Id mesh_group = w.group(file, "mesh");
+    const Id node_sets = w.group(mesh_group.get(), "node_sets");
+    for (const auto& [name, nodes] : mesh.node_sets)
+      w.fixed(node_sets.get(), name, H5T_STD_I32LE, H5T_NATIVE_INT, {nodes.size()}, nodes.data(),
+              "1", "0-based node indices of node set " + name);
+    const Id element_sets = w.group(mesh_group.get(), "element_sets");
+    for (const auto& [name, elements] : mesh.element_sets)
+      w.fixed(element_sets.get(), name, H5T_STD_I32LE, H5T_NATIVE_INT, {elements.size()},
+              elements.data(), "1", "0-based element indices of element set " + name);
+  }
 
   // About 64 KiB of positions per chunk: large enough to compress well, small enough that
   // reading one frame stays cheap; at least one frame, at most 64.
@@ -245,6 +277,28 @@ PositionLog::PositionLog(const std::string& path, const fem::Mesh& mesh,
                            "wall-clock time since the previous frame");
   h_->cuts = w.series(solver.get(), "cuts", H5T_STD_I32LE, {}, scalar_chunk, z, "1",
                       "step halvings since the previous frame");
+  if (num_muscles_ > 0) {
+    const auto m = static_cast<hsize_t>(num_muscles_);
+    const Id group = w.group(file, "muscles");
+    std::vector<std::string> names;
+    std::vector<double> max_force;
+    for (const auto& mu : muscles) {
+      names.push_back(mu.name);
+      max_force.push_back(mu.max_force);
+    }
+    w.strings(group.get(), "names", names, "muscle names, in the order of every muscle dataset");
+    w.fixed(group.get(), "max_force", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {m}, max_force.data(), "N",
+            "tension at full activation");
+    // Like the positions: about 64 KiB per chunk, at least one frame, at most 1024.
+    const hsize_t muscle_chunk = std::clamp<hsize_t>(65536 / (m * sizeof(double)), 1, 1024);
+    h_->activations = w.series(file, "activations", H5T_IEEE_F64LE, {m}, muscle_chunk, z, "1",
+                               "activation level of each muscle, a fraction of max_force");
+    h_->muscle_length = w.series(group.get(), "length", H5T_IEEE_F64LE, {m}, muscle_chunk, z, "m",
+                                 "weighted mean fibre length of each muscle");
+    h_->muscle_velocity =
+        w.series(group.get(), "velocity", H5T_IEEE_F64LE, {m}, muscle_chunk, z, "m/s",
+                 "rate of change of the muscle length, positive when lengthening");
+  }
   w.check(H5Fflush(file, H5F_SCOPE_LOCAL), "flush");
   last_flush_ = now_seconds();
 }
@@ -255,10 +309,17 @@ PositionLog::~PositionLog() {
   // Datasets close before the file (members destroyed in reverse order of declaration).
 }
 
-void PositionLog::append(double time, const fem::Vector& positions, const SolverFigures& figures) {
+void PositionLog::append(double time, const fem::Vector& positions, const SolverFigures& figures,
+                         const MuscleFrame& muscles) {
   if (positions.size() != 3 * num_nodes_)
     throw std::invalid_argument(path_ + ": positions have " + std::to_string(positions.size()) +
                                 " entries, expected 3 x " + std::to_string(num_nodes_));
+  if (num_muscles_ > 0) {
+    for (const fem::Vector* v : {&muscles.activations, &muscles.lengths, &muscles.velocities})
+      if (v->size() != num_muscles_)
+        throw std::invalid_argument(path_ + ": a muscle frame has " + std::to_string(v->size()) +
+                                    " entries, expected " + std::to_string(num_muscles_));
+  }
   const QuietErrors quiet;
   const Writer w(path_);
   const auto frame = static_cast<hsize_t>(frames_);
@@ -268,6 +329,14 @@ void PositionLog::append(double time, const fem::Vector& positions, const Solver
   w.append(h_->residual.get(), frame, H5T_NATIVE_DOUBLE, &figures.residual, "solver/residual");
   w.append(h_->wall_time.get(), frame, H5T_NATIVE_DOUBLE, &figures.wall_time, "solver/wall_time");
   w.append(h_->cuts.get(), frame, H5T_NATIVE_INT, &figures.cuts, "solver/cuts");
+  if (num_muscles_ > 0) {
+    w.append(h_->activations.get(), frame, H5T_NATIVE_DOUBLE, muscles.activations.data(),
+             "activations");
+    w.append(h_->muscle_length.get(), frame, H5T_NATIVE_DOUBLE, muscles.lengths.data(),
+             "muscles/length");
+    w.append(h_->muscle_velocity.get(), frame, H5T_NATIVE_DOUBLE, muscles.velocities.data(),
+             "muscles/velocity");
+  }
   // time last: a reader that sees T times finds T frames in every other dataset.
   w.append(h_->time.get(), frame, H5T_NATIVE_DOUBLE, &time, "time");
   ++frames_;

@@ -11,6 +11,14 @@
 //   /solver/wall_time   [T]          double  s, wall-clock time since the previous frame
 //   /solver/cuts        [T]          int32   step halvings since the previous frame
 // (When every step is logged, "since the previous frame" is simply "of the step".)
+//   /mesh/node_sets/<name>     [n]   int32   0-based node indices, one dataset per node set
+//   /mesh/element_sets/<name>  [e]   int32   0-based element indices, one per element set
+// With M > 0 muscles (omitted without muscles):
+//   /muscles/names      [M]          string  UTF-8, the muscles' order in the datasets below
+//   /muscles/max_force  [M]          double  N, tension at full activation
+//   /activations        [T x M]      double  1, activation level of each muscle
+//   /muscles/length     [T x M]      double  m, weighted mean fibre length
+//   /muscles/velocity   [T x M]      double  m/s, its rate of change (> 0: lengthening)
 //   root attributes: format_version (int), length_unit = "m", time_unit, scene_text (the YAML),
 //                    plus any set with set_attribute (e.g. "status").
 // Every dataset has a "units" and a "description" attribute. The time-indexed datasets are
@@ -18,11 +26,25 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "fem/mesh/mesh.hpp"
 #include "fem/types.hpp"
 
 namespace tongue::logging {
+
+// A muscle as the run file describes it.
+struct MuscleDescription {
+  std::string name;
+  double max_force = 0.0;  // N
+};
+
+// Per-muscle values of one frame, each of size M (in the order of the descriptions).
+struct MuscleFrame {
+  fem::Vector activations;  // [1]
+  fem::Vector lengths;      // m
+  fem::Vector velocities;   // m/s
+};
 
 // Solver figures of one frame: totals over the steps since the previous frame.
 struct SolverFigures {
@@ -47,27 +69,33 @@ class PositionLogError : public std::runtime_error {
 class PositionLog {
  public:
   // Creates (or truncates) the file, creating missing parent directories, and writes the
-  // mesh and the root attributes.
+  // mesh with its named sets, the muscles' descriptions and the root attributes.
   PositionLog(const std::string& path, const fem::Mesh& mesh, const std::string& scene_text,
-              const PositionLogOptions& options = PositionLogOptions{});
+              const PositionLogOptions& options = PositionLogOptions{},
+              const std::vector<MuscleDescription>& muscles = {});
   ~PositionLog();  // flushes and closes; never throws
   PositionLog(const PositionLog&) = delete;
   PositionLog& operator=(const PositionLog&) = delete;
 
-  // positions: current node positions flattened as 3 n + c [m], 3 N entries.
-  void append(double time, const fem::Vector& positions, const SolverFigures& figures);
+  // positions: current node positions flattened as 3 n + c [m], 3 N entries. muscles: required
+  // (each vector of size M) when the log has muscles, ignored otherwise. Throws
+  // std::invalid_argument for wrong sizes, PositionLogError when HDF5 fails.
+  void append(double time, const fem::Vector& positions, const SolverFigures& figures,
+              const MuscleFrame& muscles = {});
   // A string attribute on the root group, replaced if it exists.
   void set_attribute(const std::string& name, const std::string& value);
   void flush();
 
   int frames() const { return frames_; }
   int num_nodes() const { return num_nodes_; }
+  int num_muscles() const { return num_muscles_; }
   const std::string& path() const { return path_; }
 
  private:
   struct Handles;
   std::string path_;
   int num_nodes_ = 0;
+  int num_muscles_ = 0;
   int frames_ = 0;
   double flush_interval_ = 1.0;
   double last_flush_ = 0.0;  // steady-clock seconds

@@ -1,19 +1,25 @@
 #pragma once
 // A scene is the data describing one run: mesh, material, node sets, constraints, loads, damping,
-// analysis, solver settings and output. It is plain data: scene_reader.hpp fills it from YAML,
-// scene_builder.hpp turns it into a model. The member initializers below are the defaults, and
-// the only place they are written (the material parameters' defaults live in the material
-// factory's parameter table; the solver's and Newmark's in the fem settings structs used here).
+// muscles and their activations, analysis, solver settings and output. It is plain data:
+// scene_reader.hpp fills it from YAML, scene_builder.hpp turns it into a model. The member
+// initializers below are the defaults, and the only place they are written (the material
+// parameters' defaults live in the material factory's parameter table; the solver's and Newmark's
+// in the fem settings structs used here).
 //
 // YAML schema (all quantities SI; paths of mesh files relative to the scene file):
 //
-//   mesh:                          # required; exactly one of box / ansys
+//   mesh:                          # required; exactly one of box / ansys / tongue
 //     box: {origin: [0, 0, 0], size: [0.04, 0.01, 0.01], divisions: [8, 2, 2]}   # m
 //         # origin optional (default 0); size > 0 and divisions >= 1 required.
 //         # The mesh's node sets: x_min, x_max, y_min, y_max, z_min, z_max (faces), all.
 //     ansys: {nodes: file.node, elements: file.elem, length_scale: 0.001}
 //         # NWRITE/EWRITE text files; length_scale (default 1) turns file units into metres.
 //         # The mesh's node sets: all and mat_<n> (the nodes of the elements of material n).
+//     tongue: {refinement: 1}      # the built-in tongue (tongue/default_tongue.hpp); refinement
+//         # 1..8 (default 1) multiplies the elements along each grid direction. Its node sets:
+//         # mandible, root_bottom, hyoid, midsagittal, the landmarks tip, blade, palatal_dorsum,
+//         # velar_dorsum, root, gg_insertion (one node each); its element sets: all and one per
+//         # built-in muscle (each also a node set of the same name, as for every element set).
 //   material:                      # required
 //     type: mooney_rivlin5         # required: mooney_rivlin5 | exponential | neo_hookean | linear
 //     parameters: {poisson_ratio: 0.49}   # optional; names, units and defaults from the material
@@ -35,6 +41,26 @@
 //     - {set: tip, force_per_node: [0, 0, 0.001]}  # N on every node of the set
 //   damping: {alpha: 0.0, beta: 0.028}   # Rayleigh C = alpha M + beta K0, 1/s and s; optional.
 //                                        # K0: tangent at the initial (settled or rest) state
+//   muscles: builtin               # optional; only with mesh: tongue: its 19 muscles,
+//                                  # <group>_left / <group>_right for GGp GGm GGa HG SG IL T V MH,
+//                                  # and SL; or a list, for any mesh:
+//     - {name: GGp_left, max_force: 18.5,          # N at full activation, > 0
+//        elements: [1, 2],                         # ids as for node_sets; an element set
+//        fibres: [{nodes: [4, 9, 14], origin: [0, 0, 0], weight: 1.0}]}
+//         # fibre nodes as for node_sets, in order; origin (m, optional): a fixed attachment before
+//         # the first node; weight (default 1) > 0, scaled so that a muscle's weights sum to 1.
+//   activations:                   # optional; needs muscles. Steps of activation, each naming
+//                                  # exactly one of muscles / group and one of level / force:
+//     - {muscles: [SG_left, SG_right], level: 0.125, start: 0.0, end: 0.12}
+//     - {group: SG, force: 3.0, start: 0, end: 0.12}
+//         # level in [0, 1] of each muscle's max_force; force [N] >= 0: the total over the named
+//         # muscles, split by max_force (level = force / their summed max_force, at most 1).
+//         # group G: every muscle named G or starting with G_. start (s, default 0) >= 0, end
+//         # (s, optional: until the end of the run) > start. An entry is active while
+//         # start <= t <= end; where active entries overlap on a muscle, the later one in the
+//         # list sets its level. Muscles without an active entry are at 0. A dynamic step to
+//         # t_{n+1} uses the levels at t_{n+1}, the initial state (settled or not) has every
+//         # muscle off; a static analysis uses the levels at t = 0.
 //   analysis:                      # required
 //     type: dynamic                # required: static | dynamic
 //     settle: false                # dynamic: start from static equilibrium under the loads
@@ -78,7 +104,12 @@ struct AnsysMeshSpec {
   double length_scale = 1.0;  // file length unit in metres
 };
 
-using MeshSpec = std::variant<BoxMeshSpec, AnsysMeshSpec>;
+// The built-in tongue (tongue::model::make_default_tongue).
+struct TongueMeshSpec {
+  int refinement = 1;
+};
+
+using MeshSpec = std::variant<BoxMeshSpec, AnsysMeshSpec, TongueMeshSpec>;
 
 struct MaterialSpec {
   std::string type;
@@ -112,6 +143,34 @@ struct LoadSpec {
   fem::Vec3 force = fem::Vec3::Zero();  // N
 };
 
+// A muscle of a scene's own list; ids as for NodeSetSpec::ids.
+struct FibreSpec {
+  std::vector<long> nodes;
+  std::optional<fem::Vec3> origin;  // m
+  double weight = 1.0;              // relative; the builder normalizes a muscle's weights
+};
+
+struct MuscleSpec {
+  std::string name;
+  double max_force = 0.0;  // N
+  std::vector<long> elements;
+  std::vector<FibreSpec> fibres;
+};
+
+enum class MuscleSource { none, builtin, list };
+
+// One step of the activation schedule. Exactly one of muscles / group is given, and exactly one
+// of level / force; the builder resolves the names against the built muscles.
+struct ActivationSpec {
+  std::vector<std::string> muscles;
+  std::string group;
+  std::optional<double> level;  // [1] of each muscle's max_force
+  std::optional<double> force;  // N, total over the named muscles
+  double start = 0.0;           // s
+  std::optional<double> end;    // s; none: until the end of the run
+  int line = 0;                 // 1-based line of the entry in the file, for errors; 0: unknown
+};
+
 enum class AnalysisType { static_equilibrium, dynamic };
 
 struct AnalysisSpec {
@@ -142,6 +201,9 @@ struct Scene {
   std::optional<fem::Vec3> gravity;  // m/s^2
   std::vector<LoadSpec> loads;
   fem::RayleighDamping damping;  // zero coefficients: no damping
+  MuscleSource muscle_source = MuscleSource::none;
+  std::vector<MuscleSpec> muscles;  // MuscleSource::list, in file order
+  std::vector<ActivationSpec> activations;
   AnalysisSpec analysis;
   fem::NewtonSettings solver;
   OutputSpec output;

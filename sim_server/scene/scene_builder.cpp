@@ -13,6 +13,7 @@
 #include "fem/mesh/ansys_reader.hpp"
 #include "fem/mesh/box_generator.hpp"
 #include "scene/scene_reader.hpp"
+#include "tongue/default_tongue.hpp"
 
 namespace tongue::scene {
 
@@ -32,7 +33,13 @@ class Builder {
 
   BuiltScene build() {
     BuiltScene built;
-    fem::Mesh mesh = make_mesh(built.node_index_of_id);
+    std::vector<model::Muscle> muscles;  // the tongue's own; replaced by a scene's list
+    fem::Mesh mesh = make_mesh(built.node_index_of_id, built.element_index_of_id, muscles);
+    if (scene_.muscle_source == MuscleSource::list) {
+      muscles = listed_muscles(mesh, built.node_index_of_id, built.element_index_of_id);
+    } else if (scene_.muscle_source == MuscleSource::none) {
+      muscles.clear();
+    }
     add_element_set_nodes(mesh);
     resolve_scene_sets(mesh, built.node_index_of_id);
     built.prescribed = prescribed_dofs(mesh);
@@ -45,9 +52,10 @@ class Builder {
            e.what());  // the reader checks this too; kept for hand-made scenes
     }
     try {
+      // The fibre stiffness couples consecutive fibre nodes, which may share no element.
       built.solid = std::make_shared<const fem::SolidModel>(
           std::move(mesh), material, scene_.material.formulation, scene_.material.density,
-          built.prescribed);
+          built.prescribed, model::fibre_node_pairs(muscles));
     } catch (const std::invalid_argument& e) {
       fail("mesh", e.what());
     }
@@ -75,6 +83,15 @@ class Builder {
       built.system->add_load(
           std::make_shared<fem::ConstantForce>("load on " + load.set, std::move(force)));
     }
+    if (!muscles.empty()) {
+      try {
+        built.muscles = std::make_shared<model::MuscleForces>(built.solid, muscles);
+      } catch (const std::invalid_argument& e) {
+        fail(muscle_path(muscles, e.what()), e.what());
+      }
+      built.system->add_load(built.muscles);
+      built.activations = ActivationSchedule(scene_, built.muscles->muscles());
+    }
 
     const AnalysisSpec& a = scene_.analysis;
     built.static_settings.load_steps = a.load_steps;
@@ -93,7 +110,13 @@ class Builder {
     throw SceneError(scene_.source, path, reason);
   }
 
-  fem::Mesh make_mesh(std::map<long, int>& id_map) const {
+  fem::Mesh make_mesh(std::map<long, int>& id_map, std::map<long, int>& element_id_map,
+                      std::vector<model::Muscle>& muscles) const {
+    if (const auto* tongue = std::get_if<TongueMeshSpec>(&scene_.mesh)) {
+      model::TongueModel model = model::make_default_tongue(tongue->refinement);
+      muscles = std::move(model.muscles);
+      return std::move(model.mesh);
+    }
     if (const auto* box = std::get_if<BoxMeshSpec>(&scene_.mesh)) {
       try {
         return fem::make_box(box->origin, box->size, box->divisions[0], box->divisions[1],
@@ -107,12 +130,82 @@ class Builder {
       fem::ImportedMesh imported =
           fem::read_ansys_mesh(ansys.nodes_path, ansys.elements_path, ansys.length_scale);
       id_map = std::move(imported.node_index_of_id);
+      element_id_map = std::move(imported.element_index_of_id);
       return std::move(imported.mesh);
     } catch (const fem::MeshReadError& e) {
       fail("mesh.ansys", e.what());
     } catch (const std::invalid_argument& e) {
       fail("mesh.ansys", e.what());
     }
+  }
+
+  // The key path of the listed muscle a message from tongue::model names ("muscle '<name>' ..."),
+  // or "muscles" for the built-in ones.
+  std::string muscle_path(const std::vector<model::Muscle>& muscles,
+                          const std::string& what) const {
+    if (scene_.muscle_source == MuscleSource::list)
+      for (std::size_t i = 0; i < muscles.size(); ++i)
+        if (what.find("muscle '" + muscles[i].name + "'") != std::string::npos)
+          return "muscles[" + std::to_string(i) + "]";
+    return "muscles";
+  }
+
+  // A node (or element) id of the scene as an index: ANSYS ids for an imported mesh, 0-based
+  // indices otherwise.
+  int index_of(long id, const std::map<long, int>& id_map, int count, const char* what,
+               const std::string& path) const {
+    if (std::holds_alternative<AnsysMeshSpec>(scene_.mesh)) {
+      const auto it = id_map.find(id);
+      if (it == id_map.end())
+        fail(path,
+             std::string("no ") + what + " with id " + std::to_string(id) + " in the mesh file");
+      return it->second;
+    }
+    if (id < 0 || id >= count)
+      fail(path, std::string(what) + " index " + std::to_string(id) +
+                     " out of range: the mesh has " + std::to_string(count) + " " + what +
+                     "s (0-based)");
+    return static_cast<int>(id);
+  }
+
+  // The scene's own muscles on the mesh; each one's elements become an element set.
+  std::vector<model::Muscle> listed_muscles(fem::Mesh& mesh, const std::map<long, int>& node_ids,
+                                            const std::map<long, int>& element_ids) const {
+    std::vector<model::Muscle> out;
+    for (std::size_t i = 0; i < scene_.muscles.size(); ++i) {
+      const MuscleSpec& spec = scene_.muscles[i];
+      const std::string path = "muscles[" + std::to_string(i) + "]";
+      if (mesh.element_sets.count(spec.name) || mesh.node_sets.count(spec.name))
+        fail(path + ".name", "name is already taken by a set of the mesh");
+      model::Muscle m;
+      m.name = spec.name;
+      m.max_force = spec.max_force;
+      for (std::size_t k = 0; k < spec.elements.size(); ++k)
+        m.elements.push_back(index_of(spec.elements[k], element_ids, mesh.num_elements(), "element",
+                                      path + ".elements[" + std::to_string(k) + "]"));
+      std::sort(m.elements.begin(), m.elements.end());
+      m.elements.erase(std::unique(m.elements.begin(), m.elements.end()), m.elements.end());
+      for (std::size_t f = 0; f < spec.fibres.size(); ++f) {
+        const FibreSpec& fs = spec.fibres[f];
+        const std::string f_path = path + ".fibres[" + std::to_string(f) + "]";
+        model::Fibre fibre;
+        for (std::size_t k = 0; k < fs.nodes.size(); ++k)
+          fibre.nodes.push_back(index_of(fs.nodes[k], node_ids, mesh.num_nodes(), "node",
+                                         f_path + ".nodes[" + std::to_string(k) + "]"));
+        fibre.origin = fs.origin;
+        fibre.weight = fs.weight;
+        m.fibres.push_back(std::move(fibre));
+      }
+      try {
+        model::normalize_weights(m);
+        model::validate(m, mesh.num_nodes(), mesh.num_elements());
+      } catch (const std::invalid_argument& e) {
+        fail(path, e.what());
+      }
+      mesh.element_sets[m.name] = m.elements;
+      out.push_back(std::move(m));
+    }
+    return out;
   }
 
   // An element set names a region (a material of an imported mesh); its nodes are the node set
@@ -127,7 +220,6 @@ class Builder {
   }
 
   void resolve_scene_sets(fem::Mesh& mesh, const std::map<long, int>& id_map) const {
-    const bool imported = std::holds_alternative<AnsysMeshSpec>(scene_.mesh);
     std::map<std::string, const NodeSetSpec*> specs;
     for (const auto& s : scene_.node_sets) {
       if (mesh.node_sets.count(s.name))
@@ -156,21 +248,9 @@ class Builder {
             fail(path + ".box", "selects no nodes (rest positions in m: check units and bounds)");
           break;
         case NodeSetSpec::Kind::ids:
-          for (std::size_t i = 0; i < s.ids.size(); ++i) {
-            const std::string id_path = path + ".ids[" + std::to_string(i) + "]";
-            if (imported) {
-              const auto it = id_map.find(s.ids[i]);
-              if (it == id_map.end())
-                fail(id_path, "no node with id " + std::to_string(s.ids[i]) + " in the mesh file");
-              nodes.push_back(it->second);
-            } else {
-              if (s.ids[i] >= mesh.num_nodes())
-                fail(id_path, "node index " + std::to_string(s.ids[i]) +
-                                  " out of range: the mesh has " +
-                                  std::to_string(mesh.num_nodes()) + " nodes (0-based)");
-              nodes.push_back(static_cast<int>(s.ids[i]));
-            }
-          }
+          for (std::size_t i = 0; i < s.ids.size(); ++i)
+            nodes.push_back(index_of(s.ids[i], id_map, mesh.num_nodes(), "node",
+                                     path + ".ids[" + std::to_string(i) + "]"));
           break;
         case NodeSetSpec::Kind::set_union:
           for (std::size_t i = 0; i < s.members.size(); ++i) {

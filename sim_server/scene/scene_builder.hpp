@@ -9,26 +9,38 @@
 #include "fem/integrator/mechanical_system.hpp"
 #include "fem/integrator/newmark_integrator.hpp"
 #include "fem/integrator/static_solver.hpp"
+#include "scene/activation_schedule.hpp"
 #include "scene/scene.hpp"
+#include "tongue/muscle_forces.hpp"
 
 namespace tongue::scene {
 
 struct BuiltScene {
-  // The solid's mesh holds every node set by name: the mesh's own (box faces, "all"), one per
-  // element set ("mat_<n>" of an imported mesh: the nodes of its elements), and the scene's.
+  // The solid's mesh holds every node set by name: the mesh's own (box faces, "all", the
+  // tongue's boundary and landmark sets), one per element set ("mat_<n>" of an imported mesh,
+  // "all", each muscle's: the nodes of its elements), and the scene's. Its element sets are the
+  // mesh's and one per muscle.
   std::shared_ptr<const fem::SolidModel> solid;
-  // Loads: "gravity" when the scene has gravity, then one per entry of `loads`, in that order.
+  // Loads: "gravity" when the scene has gravity, then one per entry of `loads`, then "muscles"
+  // when the scene has muscles, in that order.
   std::unique_ptr<fem::MechanicalSystem> system;
+  // The muscles' forces, also among the system's loads; null without muscles. All activations
+  // start at 0: the caller sets them from `activations`.
+  std::shared_ptr<model::MuscleForces> muscles;
+  ActivationSchedule activations;              // resolved against `muscles` (empty without muscles)
   fem::StaticSettings static_settings;         // for a static analysis and for settling
   fem::DynamicSettings dynamic_settings;       // for a dynamic analysis
   std::vector<fem::PrescribedDof> prescribed;  // as given to the solid
   std::map<long, int> node_index_of_id;        // imported meshes: file node id -> index
+  std::map<long, int> element_index_of_id;     // imported meshes: file element id -> index
 };
 
 // Throws SceneError (scene_reader.hpp) naming the scene file and key path for what only the
-// built mesh reveals: a set that selects no nodes, a node id not in the mesh, a "mat_<n>" set the
-// file lacks, a node given two different prescribed displacements in one component, a load set
-// with no boundary face, a mesh that cannot be read or has an inverted element.
+// built mesh reveals: a set that selects no nodes, a node or element id not in the mesh, a
+// "mat_<n>" set the file lacks, a node given two different prescribed displacements in one
+// component, a load set with no boundary face, a mesh that cannot be read or has an inverted
+// element, a muscle that tongue::model::validate rejects or whose fibre has a zero-length
+// segment, and activations naming unknown muscles or groups or asking more than max_force.
 BuiltScene build_scene(const Scene& scene);
 
 // Time steps of a dynamic analysis: ceil(duration / dt), the last one shortened to end exactly

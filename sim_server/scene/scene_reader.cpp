@@ -12,6 +12,8 @@
 #include <sstream>
 
 #include "fem/material/material_factory.hpp"
+#include "tongue/default_tongue.hpp"
+#include "tongue/tongue_muscles.hpp"
 
 namespace tongue::scene {
 
@@ -60,16 +62,53 @@ const std::vector<std::string>& box_set_names() {
   return names;
 }
 
+// The built-in muscles' names, by the convention of tongue/tongue_muscles.hpp: "<group>_left"
+// and "<group>_right" for a paired group, the group's name otherwise.
+std::vector<std::string> builtin_muscle_names() {
+  std::vector<std::string> names;
+  for (const auto& g : model::muscle_groups()) {
+    if (g.paired) {
+      names.push_back(g.name + "_left");
+      names.push_back(g.name + "_right");
+    } else {
+      names.push_back(g.name);
+    }
+  }
+  return names;
+}
+
+// The node sets of the built-in tongue (tongue/default_tongue.hpp): its boundary and landmark
+// sets, "all", and one per muscle (from its element sets).
+const std::vector<std::string>& tongue_set_names() {
+  static const std::vector<std::string> names = [] {
+    std::vector<std::string> n = {"mandible", "root_bottom", "hyoid", "midsagittal"};
+    for (const auto& l : model::landmark_names()) n.push_back(l);
+    n.push_back("all");
+    for (const auto& m : builtin_muscle_names()) n.push_back(m);
+    return n;
+  }();
+  return names;
+}
+
+bool contains(const std::vector<std::string>& names, const std::string& name) {
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
 // Whether the mesh can provide a node set of this name. For an imported mesh "mat_<n>" exists
 // only when the file uses material n; the builder checks that against the mesh it reads.
 bool mesh_may_provide(const MeshSpec& mesh, const std::string& name) {
-  if (std::holds_alternative<BoxMeshSpec>(mesh)) {
-    const auto& names = box_set_names();
-    return std::find(names.begin(), names.end(), name) != names.end();
-  }
+  if (std::holds_alternative<BoxMeshSpec>(mesh)) return contains(box_set_names(), name);
+  if (std::holds_alternative<TongueMeshSpec>(mesh)) return contains(tongue_set_names(), name);
   if (name == "all") return true;
   if (name.size() <= 4 || name.compare(0, 4, "mat_") != 0) return false;
   return std::all_of(name.begin() + 4, name.end(), [](char c) { return c >= '0' && c <= '9'; });
+}
+
+// The mesh's sets and the element sets of the scene's own muscles, which are node sets too.
+bool provided(const Scene& scene, const std::string& name) {
+  if (mesh_may_provide(scene.mesh, name)) return true;
+  return std::any_of(scene.muscles.begin(), scene.muscles.end(),
+                     [&](const MuscleSpec& m) { return m.name == name; });
 }
 
 // One pass over the YAML tree. Every accessor takes the node and its key path, so that each
@@ -91,18 +130,21 @@ class Parser {
     expect_map(root, "(top level)");
     check_keys(root, "",
                {"mesh", "material", "node_sets", "constraints", "gravity", "loads", "damping",
-                "analysis", "solver", "output"});
+                "muscles", "activations", "analysis", "solver", "output"});
     Scene scene;
     scene.source = source_;
     scene.text = text;
     scene.base_dir = base_dir_;
     read_mesh(required(root, "", "mesh"), "mesh", scene);
     read_material(required(root, "", "material"), "material", scene.material);
+    // Muscles before node sets: their element sets are node sets, whose names must not clash.
+    if (const auto n = root["muscles"]; present(n)) read_muscles(n, "muscles", scene);
     if (const auto n = root["node_sets"]; present(n)) read_node_sets(n, "node_sets", scene);
     if (const auto n = root["constraints"]; present(n)) read_constraints(n, "constraints", scene);
     if (const auto n = root["gravity"]; present(n)) scene.gravity = vec3(n, "gravity");
     if (const auto n = root["loads"]; present(n)) read_loads(n, "loads", scene);
     if (const auto n = root["damping"]; present(n)) read_damping(n, "damping", scene.damping);
+    if (const auto n = root["activations"]; present(n)) read_activations(n, "activations", scene);
     read_analysis(required(root, "", "analysis"), "analysis", scene.analysis);
     if (const auto n = root["solver"]; present(n)) read_solver(n, "solver", scene.solver);
     if (const auto n = root["output"]; present(n)) read_output(n, "output", scene.output);
@@ -175,6 +217,14 @@ class Parser {
     return n.Scalar();
   }
 
+  // A set or muscle name: it names a dataset in the run file, where '/' would make a group.
+  std::string name(const YAML::Node& n, const std::string& path) const {
+    const std::string s = text(n, path);
+    if (s.empty() || s == "." || s.find('/') != std::string::npos)
+      fail(path, "'" + s + "' is not a valid name (non-empty, no '/', not '.')", n);
+    return s;
+  }
+
   fem::Vec3 vec3(const YAML::Node& n, const std::string& path) const {
     if (!n.IsSequence() || n.size() != 3) fail(path, "expected a list of 3 numbers", n);
     fem::Vec3 v;
@@ -214,16 +264,30 @@ class Parser {
 
   void read_mesh(const YAML::Node& n, const std::string& path, Scene& scene) const {
     expect_map(n, path);
-    check_keys(n, path, {"box", "ansys"});
-    const YAML::Node box = n["box"], ansys = n["ansys"];
-    if (present(box) && present(ansys)) fail(path, "give either 'box' or 'ansys', not both", n);
+    check_keys(n, path, {"box", "ansys", "tongue"});
+    const YAML::Node box = n["box"], ansys = n["ansys"], tongue = n["tongue"];
+    const int given = int(present(box)) + int(present(ansys)) + int(present(tongue));
+    if (given != 1) fail(path, "give exactly one of 'box', 'ansys' or 'tongue'", n);
     if (present(box)) {
       scene.mesh = read_box(box, child_path(path, "box"));
     } else if (present(ansys)) {
       scene.mesh = read_ansys(ansys, child_path(path, "ansys"));
     } else {
-      fail(path, "give one of 'box' or 'ansys'", n);
+      scene.mesh = read_tongue(tongue, child_path(path, "tongue"));
     }
+  }
+
+  TongueMeshSpec read_tongue(const YAML::Node& n, const std::string& path) const {
+    expect_map(n, path);
+    check_keys(n, path, {"refinement"});
+    TongueMeshSpec tongue;
+    if (const auto r = n["refinement"]; present(r)) {
+      const std::string r_path = child_path(path, "refinement");
+      tongue.refinement = at_least(r, r_path, 1);
+      // 740 r^3 hexahedra: beyond 8 the mesh no longer fits a workstation's memory.
+      if (tongue.refinement > 8) fail(r_path, "must be at most 8", r);
+    }
+    return tongue;
   }
 
   BoxMeshSpec read_box(const YAML::Node& n, const std::string& path) const {
@@ -330,11 +394,11 @@ class Parser {
     expect_map(n, path);
     std::set<std::string> seen;
     for (auto it = n.begin(); it != n.end(); ++it) {
-      const std::string name = text(it->first, path);
+      const std::string name = this->name(it->first, path);
       const std::string set_path = child_path(path, name);
       if (!seen.insert(name).second) fail(set_path, "set defined twice", it->first);
-      if (mesh_may_provide(scene.mesh, name))
-        fail(set_path, "name is already taken by a node set of the mesh", it->first);
+      if (provided(scene, name))
+        fail(set_path, "name is already taken by a node set of the mesh or a muscle", it->first);
       const YAML::Node def = it->second;
       if (!present(def)) fail(set_path, "expected one of 'box', 'ids', 'union'", it->first);
       expect_map(def, set_path);
@@ -449,6 +513,134 @@ class Parser {
       d.stiffness_coefficient = non_negative(b, child_path(path, "beta"), "s");
   }
 
+  void read_muscles(const YAML::Node& n, const std::string& path, Scene& scene) const {
+    if (n.IsScalar()) {
+      if (n.Scalar() != "builtin")
+        fail(path, "expected 'builtin' or a list of muscles, got '" + n.Scalar() + "'", n);
+      if (!std::holds_alternative<TongueMeshSpec>(scene.mesh))
+        fail(path,
+             "'builtin' muscles belong to the built-in tongue (mesh: {tongue: {}}); give a list "
+             "of muscles for other meshes",
+             n);
+      scene.muscle_source = MuscleSource::builtin;
+      return;
+    }
+    if (!n.IsSequence()) fail(path, "expected 'builtin' or a list of muscles", n);
+    if (n.size() == 0) fail(path, "the list is empty (omit the key for no muscles)", n);
+    scene.muscle_source = MuscleSource::list;
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      const YAML::Node m = n[i];
+      const std::string m_path = index_path(path, i);
+      expect_map(m, m_path);
+      check_keys(m, m_path, {"name", "max_force", "elements", "fibres"});
+      MuscleSpec spec;
+      const std::string name_path = child_path(m_path, "name");
+      const YAML::Node name_node = required(m, m_path, "name");
+      spec.name = name(name_node, name_path);
+      for (const auto& other : scene.muscles)
+        if (other.name == spec.name)
+          fail(name_path, "muscle '" + spec.name + "' is defined twice", name_node);
+      // Its elements become an element set and a node set of this name.
+      if (mesh_may_provide(scene.mesh, spec.name))
+        fail(name_path, "name is already taken by a set of the mesh", name_node);
+      spec.max_force =
+          positive(required(m, m_path, "max_force"), child_path(m_path, "max_force"), "N");
+      spec.elements = ids(required(m, m_path, "elements"), child_path(m_path, "elements"));
+      const std::string fibres_path = child_path(m_path, "fibres");
+      const YAML::Node fibres = required(m, m_path, "fibres");
+      expect_sequence(fibres, fibres_path);
+      if (fibres.size() == 0) fail(fibres_path, "a muscle needs at least one fibre", fibres);
+      for (std::size_t f = 0; f < fibres.size(); ++f) {
+        const YAML::Node fibre = fibres[f];
+        const std::string f_path = index_path(fibres_path, f);
+        expect_map(fibre, f_path);
+        check_keys(fibre, f_path, {"nodes", "origin", "weight"});
+        FibreSpec fs;
+        fs.nodes = ids(required(fibre, f_path, "nodes"), child_path(f_path, "nodes"));
+        if (const auto o = fibre["origin"]; present(o))
+          fs.origin = vec3(o, child_path(f_path, "origin"));
+        if (fs.nodes.size() + (fs.origin ? 1 : 0) < 2)
+          fail(f_path, "a fibre needs at least 2 points counting its origin", fibre);
+        if (const auto w = fibre["weight"]; present(w))
+          fs.weight = positive(w, child_path(f_path, "weight"), "");
+        spec.fibres.push_back(std::move(fs));
+      }
+      scene.muscles.push_back(std::move(spec));
+    }
+  }
+
+  // A non-empty list of node or element ids (>= 0; the builder checks them against the mesh).
+  std::vector<long> ids(const YAML::Node& n, const std::string& path) const {
+    expect_sequence(n, path);
+    if (n.size() == 0) fail(path, "the list is empty", n);
+    std::vector<long> out;
+    for (std::size_t i = 0; i < n.size(); ++i)
+      out.push_back(at_least(n[i], index_path(path, i), 0));
+    return out;
+  }
+
+  void read_activations(const YAML::Node& n, const std::string& path, Scene& scene) const {
+    if (scene.muscle_source == MuscleSource::none)
+      fail(path, "the scene has no muscles (add 'muscles')", n);
+    expect_sequence(n, path);
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      const YAML::Node a = n[i];
+      const std::string a_path = index_path(path, i);
+      expect_map(a, a_path);
+      check_keys(a, a_path, {"muscles", "group", "level", "force", "start", "end"});
+      ActivationSpec spec;
+      spec.line = a.Mark().line + 1;
+      const YAML::Node muscles = a["muscles"], group = a["group"];
+      if (present(muscles) == present(group))
+        fail(a_path,
+             "give exactly one of 'muscles' (a list of muscle names) and 'group' (every muscle "
+             "named G or G_...)",
+             a);
+      if (present(muscles)) {
+        const std::string list_path = child_path(a_path, "muscles");
+        expect_sequence(muscles, list_path);
+        if (muscles.size() == 0) fail(list_path, "the list is empty", muscles);
+        for (std::size_t k = 0; k < muscles.size(); ++k) {
+          const std::string k_path = index_path(list_path, k);
+          const std::string m = text(muscles[k], k_path);
+          if (contains(spec.muscles, m))
+            fail(k_path, "muscle '" + m + "' listed twice", muscles[k]);
+          spec.muscles.push_back(m);
+        }
+      } else {
+        spec.group = text(group, child_path(a_path, "group"));
+        if (spec.group.empty()) fail(child_path(a_path, "group"), "the group name is empty", group);
+      }
+      const YAML::Node level = a["level"], force = a["force"];
+      if (present(level) == present(force))
+        fail(a_path,
+             "give exactly one of 'level' (in [0, 1] of each muscle's max_force) and 'force' "
+             "(N, the total over the muscles)",
+             a);
+      if (present(level)) {
+        const std::string l_path = child_path(a_path, "level");
+        const double v = number(level, l_path);
+        if (v < 0.0 || v > 1.0)
+          fail(l_path, "must lie in [0, 1] (a fraction of max_force), got " + format(v), level);
+        spec.level = v;
+      } else {
+        spec.force = non_negative(force, child_path(a_path, "force"), "N");
+      }
+      if (const auto s = a["start"]; present(s))
+        spec.start = non_negative(s, child_path(a_path, "start"), "s");
+      if (const auto e = a["end"]; present(e)) {
+        const std::string e_path = child_path(a_path, "end");
+        const double end = number(e, e_path);
+        if (!(end > spec.start))
+          fail(e_path,
+               "must be later than start (" + format(spec.start) + " s), got " + format(end) + " s",
+               e);
+        spec.end = end;
+      }
+      scene.activations.push_back(std::move(spec));
+    }
+  }
+
   void read_analysis(const YAML::Node& n, const std::string& path, AnalysisSpec& a) const {
     expect_map(n, path);
     check_keys(
@@ -535,14 +727,17 @@ class Parser {
     std::map<std::string, const NodeSetSpec*> defined;
     for (const auto& s : scene.node_sets) defined[s.name] = &s;
     const auto known = [&](const std::string& name) {
-      return defined.count(name) != 0 || mesh_may_provide(scene.mesh, name);
+      return defined.count(name) != 0 || provided(scene, name);
     };
     const auto unknown = [&](const std::string& name) {
       std::vector<std::string> names;
       if (std::holds_alternative<BoxMeshSpec>(scene.mesh))
         names = box_set_names();
+      else if (std::holds_alternative<TongueMeshSpec>(scene.mesh))
+        names = tongue_set_names();
       else
         names = {"all", "mat_<n>"};
+      for (const auto& m : scene.muscles) names.push_back(m.name);
       for (const auto& s : scene.node_sets) names.push_back(s.name);
       return "unknown node set '" + name + "' (known: " + join(names) + ")";
     };

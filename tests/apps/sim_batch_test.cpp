@@ -4,6 +4,7 @@
 #include <hdf5.h>
 #include <sys/wait.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -117,6 +118,31 @@ class RunFile {
     return value;
   }
 
+  // A dataset of variable-length strings.
+  std::vector<std::string> strings(const std::string& name) const {
+    const hid_t ds = H5Dopen2(file_, name.c_str(), H5P_DEFAULT);
+    if (ds < 0) return {};
+    const hid_t type = H5Dget_type(ds);
+    std::vector<std::string> out;
+    if (H5Tis_variable_str(type) > 0) {
+      std::vector<hsize_t> dims = shape(name);
+      std::vector<char*> raw(dims.empty() ? 0 : dims[0], nullptr);
+      if (!raw.empty() && H5Dread(ds, type, H5S_ALL, H5S_ALL, H5P_DEFAULT, raw.data()) >= 0) {
+        for (char* s : raw) {
+          out.emplace_back(s ? s : "");
+          H5free_memory(s);
+        }
+      }
+    }
+    H5Tclose(type);
+    H5Dclose(ds);
+    return out;
+  }
+
+  bool exists(const std::string& name) const {
+    return H5Lexists(file_, name.c_str(), H5P_DEFAULT) > 0;
+  }
+
   int int_attribute(const std::string& name) const {
     int v = -1;
     const hid_t attr = H5Aopen_by_name(file_, "/", name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
@@ -199,6 +225,14 @@ TEST_F(SimBatch, DynamicSceneWritesARunFileThatMoves) {
   EXPECT_EQ(f.string_attribute("/rest_positions", "units"), "m");
   EXPECT_EQ(f.string_attribute("/solver/residual", "units"), "N");
   EXPECT_EQ(f.string_attribute("/solver/wall_time", "units"), "s");
+
+  // The mesh's sets, and no muscle datasets without muscles.
+  EXPECT_EQ(f.ints("/mesh/node_sets/x_min"), (std::vector<int>{0, 5, 10, 15}));
+  EXPECT_EQ(f.shape("/mesh/node_sets/all"), (std::vector<hsize_t>{20}));
+  EXPECT_EQ(f.ints("/mesh/element_sets/all"), (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_FALSE(f.exists("/muscles"));
+  EXPECT_FALSE(f.exists("/activations"));
+  EXPECT_EQ(f.string_attribute("/", "initial_state").rfind("reference", 0), 0u);
 }
 
 TEST_F(SimBatch, OutputFileFromTheSceneAndQuiet) {
@@ -281,6 +315,127 @@ solver: {max_iterations: 1, residual_rtol: 0, residual_atol: 0, increment_rtol: 
   ASSERT_TRUE(f.ok());
   EXPECT_EQ(f.shape("/positions"), (std::vector<hsize_t>{1, 20, 3}));  // the initial frame
   EXPECT_EQ(f.string_attribute("/", "status").rfind("failed: ", 0), 0u);
+}
+
+// The built-in tongue, settled under gravity, then a step of 3 N on SG (the paper's first
+// experiment), cut short to three 4 ms steps.
+const char* const kTongueSg = R"(
+mesh: {tongue: {refinement: 1}}
+material: {type: mooney_rivlin5, parameters: {poisson_ratio: 0.49}, density: 1000}
+constraints:
+  - {set: mandible, components: [x, y, z]}
+  - {set: root_bottom, components: [y]}
+  - {set: hyoid, components: [y, z]}
+gravity: [0, -9.81, 0]
+damping: {alpha: 0, beta: 0.028}
+muscles: builtin
+activations:
+  - {group: SG, force: 3.0, start: 0, end: 0.12}
+analysis: {type: dynamic, settle: true, duration: 0.012, dt: 0.004}
+)";
+
+TEST_F(SimBatch, TongueSceneLogsMusclesSetsAndLandmarks) {
+  const fs::path scene = write_scene(kTongueSg);
+  const fs::path h5 = dir_ / "tongue.h5";
+  const RunResult r = run("'" + scene.string() + "' --output '" + h5.string() + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("19 muscles"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("summary: completed, 3 steps"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("landmark displacement"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("velar_dorsum"), std::string::npos) << r.out;
+
+  const RunFile f(h5);
+  ASSERT_TRUE(f.ok());
+  const hsize_t frames = 4, muscles = 19;  // t = 0 (settled) and 3 steps
+  EXPECT_EQ(f.shape("/time"), (std::vector<hsize_t>{frames}));
+  EXPECT_EQ(f.shape("/activations"), (std::vector<hsize_t>{frames, muscles}));
+  EXPECT_EQ(f.shape("/muscles/length"), (std::vector<hsize_t>{frames, muscles}));
+  EXPECT_EQ(f.shape("/muscles/velocity"), (std::vector<hsize_t>{frames, muscles}));
+  EXPECT_EQ(f.shape("/muscles/max_force"), (std::vector<hsize_t>{muscles}));
+  EXPECT_EQ(f.string_attribute("/activations", "units"), "1");
+  EXPECT_EQ(f.string_attribute("/muscles/length", "units"), "m");
+  EXPECT_EQ(f.string_attribute("/muscles/velocity", "units"), "m/s");
+  EXPECT_EQ(f.string_attribute("/muscles/max_force", "units"), "N");
+  EXPECT_EQ(f.string_attribute("/", "initial_state").rfind("settled", 0), 0u);
+
+  const std::vector<std::string> names = f.strings("/muscles/names");
+  ASSERT_EQ(names.size(), muscles);
+  const auto find = [&](const std::string& name) {
+    return static_cast<int>(std::find(names.begin(), names.end(), name) - names.begin());
+  };
+  const int left = find("SG_left"), right = find("SG_right");
+  ASSERT_LT(left, static_cast<int>(muscles));
+  ASSERT_LT(right, static_cast<int>(muscles));
+  const std::vector<double> max_force = f.doubles("/muscles/max_force");
+  EXPECT_DOUBLE_EQ(max_force[left] + max_force[right], 24.0);
+
+  // Frame 0 is the settled state, muscles off; during the step SG runs at 3 / 24 = 0.125.
+  const std::vector<double> act = f.doubles("/activations");
+  const std::vector<double> length = f.doubles("/muscles/length");
+  ASSERT_EQ(act.size(), frames * muscles);
+  for (hsize_t t = 0; t < frames; ++t) {
+    for (hsize_t m = 0; m < muscles; ++m) {
+      const bool sg = static_cast<int>(m) == left || static_cast<int>(m) == right;
+      EXPECT_DOUBLE_EQ(act[t * muscles + m], sg && t > 0 ? 0.125 : 0.0) << t << " " << names[m];
+      EXPECT_GT(length[t * muscles + m], 0.0) << names[m];
+    }
+  }
+  EXPECT_LT(length[3 * muscles + left], length[left]);  // SG shortens
+
+  // Sets for pictures: the muscle's elements and the landmarks.
+  const std::vector<int> sg_elements = f.ints("/mesh/element_sets/SG_left");
+  EXPECT_FALSE(sg_elements.empty());
+  const std::vector<hsize_t> elements_shape = f.shape("/elements");
+  ASSERT_EQ(elements_shape.size(), 2u);
+  for (int e : sg_elements) EXPECT_LT(static_cast<hsize_t>(e), elements_shape[0]);
+  for (const char* name :
+       {"tip", "blade", "palatal_dorsum", "velar_dorsum", "root", "gg_insertion"}) {
+    EXPECT_EQ(f.shape(std::string("/mesh/node_sets/") + name), (std::vector<hsize_t>{1})) << name;
+  }
+  EXPECT_FALSE(f.ints("/mesh/node_sets/mandible").empty());
+
+  // SG lifts the velar dorsum (Gerard et al. 2003 sec. IV.2).
+  const int velar = f.ints("/mesh/node_sets/velar_dorsum").at(0);
+  const std::vector<hsize_t> pshape = f.shape("/positions");
+  ASSERT_EQ(pshape.size(), 3u);
+  const std::vector<double> positions = f.doubles("/positions");
+  const std::size_t frame_size = pshape[1] * 3;
+  EXPECT_GT(positions[3 * frame_size + 3 * velar + 1], positions[3 * velar + 1]);
+}
+
+TEST_F(SimBatch, StaticSceneWithListedMuscleLogsItsLevelAndLength) {
+  const fs::path scene = write_scene(std::string(kHead) + R"(
+muscles:
+  - {name: flexor, max_force: 0.01, elements: [2, 3], fibres: [{nodes: [2, 3, 4]}]}
+activations:
+  - {muscles: [flexor], level: 0.5}
+analysis: {type: static, load_steps: 2}
+)");
+  const fs::path h5 = dir_ / "muscle_static.h5";
+  const RunResult r = run("'" + scene.string() + "' --output '" + h5.string() + "' --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const RunFile f(h5);
+  ASSERT_TRUE(f.ok());
+  EXPECT_EQ(f.strings("/muscles/names"), (std::vector<std::string>{"flexor"}));
+  EXPECT_EQ(f.doubles("/activations"), (std::vector<double>{0.5, 0.5, 0.5}));
+  EXPECT_EQ(f.doubles("/muscles/velocity"), (std::vector<double>{0.0, 0.0, 0.0}));
+  const std::vector<double> length = f.doubles("/muscles/length");
+  ASSERT_EQ(length.size(), 3u);
+  EXPECT_DOUBLE_EQ(length[0], 0.02);  // two 10 mm segments at rest
+  EXPECT_LT(length[2], length[0]);    // the muscle pulls its end in
+  EXPECT_EQ(f.ints("/mesh/element_sets/flexor"), (std::vector<int>{2, 3}));
+}
+
+TEST_F(SimBatch, UnknownMuscleGroupIsASceneError) {
+  std::string text = kTongueSg;
+  text.replace(text.find("group: SG"), 9, "group: SK");
+  const fs::path scene = write_scene(text);
+  const fs::path h5 = dir_ / "never.h5";
+  const RunResult r = run("'" + scene.string() + "' --output '" + h5.string() + "'");
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("activations[0].group: no muscle is named 'SK'"), std::string::npos)
+      << r.err;
+  EXPECT_FALSE(fs::exists(h5));
 }
 
 }  // namespace

@@ -291,6 +291,32 @@ TEST_F(AnsysScene, MissingMaterialSet) {
   }
 }
 
+TEST_F(AnsysScene, MuscleElementsAndFibreNodesByFileIds) {
+  const BuiltScene built = build_scene(scene(R"(
+muscles:
+  - {name: m, max_force: 2, elements: [2], fibres: [{nodes: [100, 101, 102]}]}
+)"));
+  EXPECT_EQ(built.element_index_of_id.at(2), 1);
+  ASSERT_TRUE(built.muscles);
+  const auto& m = built.muscles->muscles().at(0);
+  EXPECT_EQ(m.elements, (std::vector<int>{1}));
+  EXPECT_EQ(m.fibres.at(0).nodes, (std::vector<int>{0, 1, 2}));
+  EXPECT_EQ(built.solid->mesh().element_set("m"), (std::vector<int>{1}));
+}
+
+TEST_F(AnsysScene, UnknownMuscleElementId) {
+  try {
+    build_scene(scene(R"(
+muscles:
+  - {name: m, max_force: 2, elements: [7], fibres: [{nodes: [100, 101]}]}
+)"));
+    FAIL() << "no SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.key_path(), "muscles[0].elements[0]") << e.what();
+    EXPECT_NE(std::string(e.what()).find("no element with id 7"), std::string::npos) << e.what();
+  }
+}
+
 TEST_F(AnsysScene, MalformedMeshFileIsASceneError) {
   std::ofstream(dir_ / "t.elem") << "1 2 3\n";
   try {

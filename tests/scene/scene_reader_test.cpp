@@ -346,7 +346,7 @@ mesh:
 material: {type: neo_hookean, parameters: {shear_modulus: 1}}
 analysis: {type: static}
 )",
-               "mesh", "not both");
+               "mesh", "exactly one of");
 }
 
 TEST(SceneErrors, NeitherBoxNorAnsys) {
