@@ -25,7 +25,7 @@ class Placer {
 
   int m() const { return g_.refinement; }
 
-  // Lateral node index at `offset` (base-grid layers from the midline, scaled) on a side.
+  // Lateral node index `offset_fine` node layers (fine grid) from the midline on a side.
   int lateral(Side side, int offset_fine) const {
     return side == Side::right ? g_.midline() - offset_fine : g_.midline() + offset_fine;
   }
