@@ -49,6 +49,10 @@
 //        fibres: [{nodes: [4, 9, 14], origin: [0, 0, 0], weight: 1.0}]}
 //         # fibre nodes as for node_sets, in order; origin (m, optional): a fixed attachment before
 //         # the first node; weight (default 1) > 0, scaled so that a muscle's weights sum to 1.
+//   muscle_stiffening: 7.333       # optional; needs muscles. Stiffness of fully active muscle
+//                                  # tissue over resting tissue, >= 1 (1: off); default 110/15
+//                                  # (Gerard et al. 2003 sec. III.2: 15 kPa at rest, 110 kPa
+//                                  # fully contracted), linear in the activation in between.
 //   activations:                   # optional; needs muscles. Steps of activation, each naming
 //                                  # exactly one of muscles / group and one of level / force:
 //     - {muscles: [SG_left, SG_right], level: 0.125, start: 0.0, end: 0.12}
@@ -89,6 +93,7 @@
 #include "fem/integrator/newmark_integrator.hpp"
 #include "fem/solver/newton_solver.hpp"
 #include "fem/types.hpp"
+#include "tongue/active_stiffening.hpp"
 
 namespace tongue::scene {
 
@@ -204,6 +209,8 @@ struct Scene {
   MuscleSource muscle_source = MuscleSource::none;
   std::vector<MuscleSpec> muscles;  // MuscleSource::list, in file order
   std::vector<ActivationSpec> activations;
+  // E_contracted / E_rest of active muscle tissue (tongue/active_stiffening.hpp); 1: none.
+  double muscle_stiffening = model::kContractedToRestStiffness;
   AnalysisSpec analysis;
   fem::NewtonSettings solver;
   OutputSpec output;

@@ -1,5 +1,7 @@
 #include "scene/scene_builder.hpp"
 
+#include "tongue/active_stiffening.hpp"
+
 #include <algorithm>
 #include <charconv>
 #include <cmath>
@@ -90,6 +92,10 @@ class Builder {
         fail(muscle_path(muscles, e.what()), e.what());
       }
       built.system->add_load(built.muscles);
+      if (scene_.muscle_stiffening > 1.0) {
+        built.system->add_load(std::make_shared<model::ActiveStiffening>(built.solid, built.muscles,
+                                                                         scene_.muscle_stiffening));
+      }
       built.activations = ActivationSchedule(scene_, built.muscles->muscles());
     }
 

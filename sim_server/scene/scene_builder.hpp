@@ -22,7 +22,8 @@ struct BuiltScene {
   // mesh's and one per muscle.
   std::shared_ptr<const fem::SolidModel> solid;
   // Loads: "gravity" when the scene has gravity, then one per entry of `loads`, then "muscles"
-  // when the scene has muscles, in that order.
+  // when the scene has muscles, then "active muscle stiffening" unless muscle_stiffening is 1,
+  // in that order.
   std::unique_ptr<fem::MechanicalSystem> system;
   // The muscles' forces, also among the system's loads; null without muscles. All activations
   // start at 0: the caller sets them from `activations`.

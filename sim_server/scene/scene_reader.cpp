@@ -130,7 +130,7 @@ class Parser {
     expect_map(root, "(top level)");
     check_keys(root, "",
                {"mesh", "material", "node_sets", "constraints", "gravity", "loads", "damping",
-                "muscles", "activations", "analysis", "solver", "output"});
+                "muscles", "muscle_stiffening", "activations", "analysis", "solver", "output"});
     Scene scene;
     scene.source = source_;
     scene.text = text;
@@ -145,6 +145,16 @@ class Parser {
     if (const auto n = root["loads"]; present(n)) read_loads(n, "loads", scene);
     if (const auto n = root["damping"]; present(n)) read_damping(n, "damping", scene.damping);
     if (const auto n = root["activations"]; present(n)) read_activations(n, "activations", scene);
+    if (const auto n = root["muscle_stiffening"]; present(n)) {
+      if (scene.muscle_source == MuscleSource::none) {
+        fail("muscle_stiffening", "needs muscles", n);
+      }
+      scene.muscle_stiffening = positive(n, "muscle_stiffening", "");
+      if (scene.muscle_stiffening < 1.0) {
+        fail("muscle_stiffening",
+             "must be >= 1 (1: no stiffening), got " + format(scene.muscle_stiffening), n);
+      }
+    }
     read_analysis(required(root, "", "analysis"), "analysis", scene.analysis);
     if (const auto n = root["solver"]; present(n)) read_solver(n, "solver", scene.solver);
     if (const auto n = root["output"]; present(n)) read_output(n, "output", scene.output);

@@ -409,6 +409,7 @@ muscles:
   - {name: flexor, max_force: 0.01, elements: [2, 3], fibres: [{nodes: [2, 3, 4]}]}
 activations:
   - {muscles: [flexor], level: 0.5}
+muscle_stiffening: 1   # the plain fibre model: this test is about the logging of a listed muscle
 analysis: {type: static, load_steps: 2}
 )");
   const fs::path h5 = dir_ / "muscle_static.h5";

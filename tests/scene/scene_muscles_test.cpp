@@ -2,6 +2,8 @@
 // every error, each named by its key path.
 #include <gtest/gtest.h>
 
+#include "tongue/active_stiffening.hpp"
+
 #include <set>
 #include <string>
 #include <utility>
@@ -382,9 +384,14 @@ TEST(TongueSceneBuilder, TongueMeshCarriesItsSetsAndBuiltinMuscles) {
     EXPECT_EQ(mesh.element_set(m.name), m.elements) << m.name;
     EXPECT_FALSE(mesh.node_set(m.name).empty()) << m.name;
   }
-  // The muscle forces are the system's last load, and every activation starts at 0.
-  ASSERT_FALSE(built.system->loads().empty());
-  EXPECT_EQ(built.system->loads().back().get(), built.muscles.get());
+  // The muscle forces come last but for the active stiffening (on by default, at 110 / 15),
+  // and every activation starts at 0.
+  const auto& loads = built.system->loads();
+  ASSERT_GE(loads.size(), 2u);
+  EXPECT_EQ(loads[loads.size() - 2].get(), built.muscles.get());
+  const auto* stiffening = dynamic_cast<const model::ActiveStiffening*>(loads.back().get());
+  ASSERT_NE(stiffening, nullptr);
+  EXPECT_DOUBLE_EQ(stiffening->ratio(), 110.0 / 15.0);
   EXPECT_EQ(built.muscles->activations(), fem::Vector::Zero(19));
   EXPECT_EQ(built.activations.num_muscles(), 19);
   // mandible x, y, z; root_bottom y; hyoid y, z (the sets may share nodes).
@@ -561,6 +568,47 @@ TEST(ActivationSceneBuilderErrors, MessageGivesTheLine) {
   } catch (const SceneError& e) {
     EXPECT_EQ(e.line(), scene.activations[1].line) << e.what();
     EXPECT_GT(e.line(), 0);
+  }
+}
+
+}  // namespace
+}  // namespace tongue::scene
+
+namespace tongue::scene {
+namespace {
+
+TEST(MuscleStiffeningScene, DefaultIsThePapersRatioAndOneTurnsItOff) {
+  const std::string head = R"(
+mesh: {tongue: {refinement: 1}}
+material: {type: mooney_rivlin5}
+muscles: builtin
+analysis: {type: static}
+)";
+  EXPECT_DOUBLE_EQ(parse_scene(head, "", "t.yaml").muscle_stiffening, 110.0 / 15.0);
+  EXPECT_DOUBLE_EQ(parse_scene(head + "muscle_stiffening: 1\n", "", "t.yaml").muscle_stiffening,
+                   1.0);
+  for (const char* bad :
+       {"muscle_stiffening: 0.5\n", "muscle_stiffening: -2\n", "muscle_stiffening: abc\n"}) {
+    try {
+      parse_scene(head + bad, "", "t.yaml");
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("muscle_stiffening"), std::string::npos) << e.what();
+    }
+  }
+}
+
+TEST(MuscleStiffeningScene, NeedsMuscles) {
+  try {
+    parse_scene(
+        "mesh: {box: {size: [0.01, 0.01, 0.01], divisions: [1, 1, 1]}}\n"
+        "material: {type: mooney_rivlin5}\n"
+        "muscle_stiffening: 2\nanalysis: {type: static}\n",
+        "", "t.yaml");
+    ADD_FAILURE() << "accepted muscle_stiffening without muscles";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("muscle_stiffening: needs muscles"), std::string::npos)
+        << e.what();
   }
 }
 

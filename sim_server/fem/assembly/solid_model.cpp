@@ -47,14 +47,25 @@ hex8::ElementCoords SolidModel::element_coords(int e, const Vector& positions) c
 
 AssemblyStatus SolidModel::assemble(const Vector& u, Vector& internal_force,
                                     SymmetricMatrix* stiffness, double* strain_energy) const {
-  AssemblyStatus status;
-  status.min_J = std::numeric_limits<double>::infinity();
   internal_force.setZero(num_dofs());
   if (stiffness) stiffness->set_zero();
   if (strain_energy) *strain_energy = 0.0;
+  return add_weighted(u, {}, internal_force, stiffness, strain_energy);
+}
+
+AssemblyStatus SolidModel::add_weighted(const Vector& u, const std::vector<double>& weights,
+                                        Vector& internal_force, SymmetricMatrix* stiffness,
+                                        double* strain_energy) const {
+  if (!weights.empty() && static_cast<int>(weights.size()) != mesh_.num_elements()) {
+    throw std::invalid_argument("element weights: one per element expected");
+  }
+  AssemblyStatus status;
+  status.min_J = std::numeric_limits<double>::infinity();
   const Vector x = rest_positions_ + u;
   ElementResponse r;
   for (int e = 0; e < mesh_.num_elements(); ++e) {
+    const double w = weights.empty() ? 1.0 : weights[e];
+    if (w == 0.0) continue;
     const bool ok = evaluate_element(geometry_[e], element_coords(e, x), *material_, formulation_,
                                      stiffness != nullptr, r);
     status.min_J = std::min(status.min_J, r.min_J);
@@ -63,17 +74,17 @@ AssemblyStatus SolidModel::assemble(const Vector& u, Vector& internal_force,
       status.inverted_element = e;
       return status;
     }
-    if (strain_energy) *strain_energy += r.energy;
+    if (strain_energy) *strain_energy += w * r.energy;
     const Hex8& nodes = mesh_.elements[e];
     for (int a = 0; a < 8; ++a)
-      internal_force.segment<3>(3 * nodes[a]) += r.force.segment<3>(3 * a);
+      internal_force.segment<3>(3 * nodes[a]) += w * r.force.segment<3>(3 * a);
     if (stiffness) {
       std::vector<double>& values = stiffness->values();
       const auto& scatter = element_scatter_[e];
       for (int i = 0; i < 24; ++i) {
         for (int j = 0; j < 24; ++j) {
           const int k = scatter[24 * i + j];
-          if (k >= 0) values[k] += r.stiffness(i, j);
+          if (k >= 0) values[k] += w * r.stiffness(i, j);
         }
       }
     }

@@ -42,6 +42,12 @@ class SolidModel {
   // stiffness is given, the tangent d f_int / du over the free dofs. u is the full displacement.
   AssemblyStatus assemble(const Vector& u, Vector& internal_force, SymmetricMatrix* stiffness,
                           double* strain_energy = nullptr) const;
+  // Adds the internal force, tangent and energy of the elements scaled by per-element weights
+  // (one per element; empty: all 1; elements of weight 0 are skipped) to what the arguments
+  // hold: for energies that are multiples of the material's, such as active muscle stiffening.
+  AssemblyStatus add_weighted(const Vector& u, const std::vector<double>& weights,
+                              Vector& internal_force, SymmetricMatrix* stiffness,
+                              double* strain_energy = nullptr) const;
 
   // Mass matrix over the free dofs [kg]: consistent, or lumped by row sums.
   SymmetricMatrix mass_matrix(bool lumped) const;
