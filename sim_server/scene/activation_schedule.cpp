@@ -1,4 +1,5 @@
 #include "scene/activation_schedule.hpp"
+#include "scene/number_text.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -9,12 +10,6 @@
 namespace tongue::scene {
 
 namespace {
-
-std::string format(double v) {
-  char buf[32];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, res.ptr);
-}
 
 std::string names_of(const std::vector<model::Muscle>& muscles) {
   std::string s;

@@ -1,4 +1,5 @@
 #include "scene/scene_builder.hpp"
+#include "scene/number_text.hpp"
 
 #include "tongue/active_stiffening.hpp"
 
@@ -20,12 +21,6 @@
 namespace tongue::scene {
 
 namespace {
-
-std::string format(double v) {
-  char buf[32];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, res.ptr);
-}
 
 const char* const kComponentNames[3] = {"x", "y", "z"};
 

@@ -1,4 +1,5 @@
 #include "scene/scene_reader.hpp"
+#include "scene/number_text.hpp"
 
 #include <yaml-cpp/yaml.h>
 
@@ -29,12 +30,6 @@ std::string format_error(const std::string& file, const std::string& key_path,
 }
 
 // Shortest round-trip text of a number, so messages repeat exactly what was written.
-std::string format(double v) {
-  char buf[32];
-  const auto res = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, res.ptr);
-}
-
 std::string join(const std::vector<std::string>& names) {
   std::string s;
   for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;

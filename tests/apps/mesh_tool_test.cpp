@@ -14,6 +14,7 @@
 
 #include "fem/mesh/ansys_reader.hpp"
 #include "fem/mesh/mesh_quality.hpp"
+#include "support/run_command.hpp"
 #include "support/temp_dir_test.hpp"
 
 #ifndef MESH_TOOL_PATH
@@ -25,17 +26,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using testing::read_text;
+using testing::RunResult;
 
 // A 40 x 20 x 20 mm box of 4 x 2 x 2 cubes of 10 mm, in mm, node (i, j, k) with id
 // 101 + i + 5 (j + 3 k) and element (i, j, k) with id 1001 + i + 4 (j + 2 k); material 2 for
@@ -97,15 +89,7 @@ class MeshTool : public testing::TempDirTest {
   }
 
   RunResult run(const std::string& args) const {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string command = std::string("'") + MESH_TOOL_PATH + "' " + args + " >'" +
-                                out.string() + "' 2>'" + err.string() + "'";
-    const int status = std::system(command.c_str());
-    RunResult r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = read_text(out);
-    r.err = read_text(err);
-    return r;
+    return testing::run_command(MESH_TOOL_PATH, args, dir_);
   }
 
   static bool contains(const std::string& text, const std::string& part) {

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "support/run_command.hpp"
 #include "support/temp_dir_test.hpp"
 
 #ifndef SIM_BATCH_PATH
@@ -42,32 +43,15 @@ analysis: {type: dynamic, duration: 0.02, dt: 0.002}
 output: {every: 3}
 )";
 
-struct RunResult {
-  int exit_code = -1;
-  std::string out, err;
-};
-
-std::string read_text(const fs::path& p) {
-  std::ifstream in(p);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
+using testing::read_text;
+using testing::RunResult;
 
 class SimBatch : public testing::TempDirTest {
  protected:
   fs::path write_scene(const std::string& text) const { return write("scene.yaml", text); }
 
   RunResult run(const std::string& args) const {
-    const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-    const std::string command = std::string("'") + SIM_BATCH_PATH + "' " + args + " >'" +
-                                out.string() + "' 2>'" + err.string() + "'";
-    const int status = std::system(command.c_str());
-    RunResult r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    r.out = read_text(out);
-    r.err = read_text(err);
-    return r;
+    return testing::run_command(SIM_BATCH_PATH, args, dir_);
   }
 };
 
