@@ -26,7 +26,6 @@ namespace {
 
 namespace fs = std::filesystem;
 
-using testing::read_text;
 using testing::RunResult;
 
 // A 40 x 20 x 20 mm box of 4 x 2 x 2 cubes of 10 mm, in mm, node (i, j, k) with id

@@ -43,7 +43,6 @@ analysis: {type: dynamic, duration: 0.02, dt: 0.002}
 output: {every: 3}
 )";
 
-using testing::read_text;
 using testing::RunResult;
 
 class SimBatch : public testing::TempDirTest {
