@@ -1,0 +1,42 @@
+#pragma once
+// LCM channel names of one tongue server. Every channel is UPPER_SNAKE under a configurable
+// prefix, so several servers share one bus: prefix "TONGUE_" gives TONGUE_ACTIVATION,
+// TONGUE_STATE, TONGUE_MODEL and TONGUE_COMMAND; prefix "TONGUE2_" a second server's.
+#include <stdexcept>
+#include <string>
+#include <string_view>
+
+namespace tongue::bus {
+
+inline constexpr std::string_view kDefaultChannelPrefix = "TONGUE_";
+
+// True when every character of prefix is in [A-Z0-9_] (the empty prefix is valid).
+inline bool is_valid_channel_prefix(std::string_view prefix) {
+  for (const char c : prefix) {
+    const bool ok = (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') || c == '_';
+    if (!ok) return false;
+  }
+  return true;
+}
+
+struct Channels {
+  std::string activation;  // lcmt_tongue_activation, controllers -> server
+  std::string state;       // lcmt_tongue_state, server -> everyone, once per published step
+  std::string model;       // lcmt_tongue_model, server -> everyone, at start and on "describe"
+  std::string command;     // lcmt_tongue_command, anyone -> server
+
+  // Throws std::invalid_argument naming the prefix when it has a character outside [A-Z0-9_].
+  explicit Channels(std::string_view prefix = kDefaultChannelPrefix) {
+    if (!is_valid_channel_prefix(prefix)) {
+      throw std::invalid_argument("channel prefix \"" + std::string(prefix) +
+                                  "\" must contain only A-Z, 0-9 and _ (UPPER_SNAKE)");
+    }
+    const std::string p(prefix);
+    activation = p + "ACTIVATION";
+    state = p + "STATE";
+    model = p + "MODEL";
+    command = p + "COMMAND";
+  }
+};
+
+}  // namespace tongue::bus
