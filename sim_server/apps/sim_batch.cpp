@@ -22,6 +22,7 @@
 #include "fem/integrator/newmark_integrator.hpp"
 #include "fem/integrator/static_solver.hpp"
 #include "logging/position_log.hpp"
+#include "logging/scene_run_file.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_reader.hpp"
 #include "tongue/default_tongue.hpp"
@@ -109,24 +110,7 @@ class BatchRun {
            bool quiet)
       : scene_(scene), built_(std::move(built)), quiet_(quiet) {
     const fem::SolidModel& solid = *built_.solid;
-    if (!output.empty()) {
-      logging::PositionLogOptions options;
-      // A static run's frames are load factors, not times. (assign, not = "1": GCC 12 warns
-      // falsely about overlapping memcpy for a one-character literal.)
-      if (!is_dynamic()) options.time_unit.assign(1, '1');
-      std::vector<logging::MuscleDescription> muscles;
-      if (built_.muscles)
-        for (const auto& m : built_.muscles->muscles()) muscles.push_back({m.name, m.max_force});
-      log_ = std::make_unique<logging::PositionLog>(output, solid.mesh(), scene_.text, options,
-                                                    muscles);
-      log_->set_attribute("analysis", is_dynamic() ? "dynamic" : "static");
-      // What frame 0 shows, so that pictures can compare the end with rest under gravity.
-      log_->set_attribute("initial_state",
-                          is_dynamic() && scene_.analysis.settle
-                              ? "settled: static equilibrium under the loads, muscles off"
-                              : "reference: the rest positions");
-      log_->set_attribute("status", "running");
-    }
+    if (!output.empty()) log_ = logging::open_scene_run_file(output, scene_, built_);
     std::printf(
         "%s: %d nodes, %d hex8, %d free dofs, mass %.4g kg, volume %.4g cm^3, %d muscles, %s "
         "analysis\n",
@@ -275,14 +259,7 @@ class BatchRun {
   void write_frame(double time, const fem::Vector& u, const fem::Vector* v,
                    const logging::SolverFigures& figures) {
     if (!log_) return;
-    logging::MuscleFrame muscles;
-    if (built_.muscles) {
-      const model::MuscleForces& m = *built_.muscles;
-      muscles.activations = m.activations();
-      muscles.lengths = m.muscle_lengths(u);
-      muscles.velocities =
-          v ? m.muscle_velocities(u, *v) : fem::Vector::Zero(m.num_muscles()).eval();
-    }
+    const logging::MuscleFrame muscles = logging::scene_muscle_frame(built_, u, v);
     log_->append(time, built_.solid->rest_positions() + u, figures, muscles);
   }
 

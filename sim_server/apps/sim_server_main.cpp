@@ -1,0 +1,195 @@
+// sim_server SCENE.yaml [--mode lockstep|fast] [--lcm-url URL] [--prefix TONGUE_]
+//            [--output FILE] [--timeout-ms N] [--on-silence hold|stop] [--max-steps N]
+//
+// Runs a dynamic scene with muscles on the LCM bus (server/server_loop.hpp): publishes the model
+// and the state of step 0, then advances under activation messages (lock-step: one step per
+// activation tagged with the next step; fast: free-running with the latest activation), logging
+// every step to the run file when one is given (--output or the scene's output.file).
+//
+// Exit status: 0 shutdown command or --max-steps reached; 1 bad command line, scene error, bus or
+// I/O error; 2 a step failed to converge even after cuts (its state is published with
+// converged = false; the run file keeps the accepted steps); 3 lock-step silence with
+// --on-silence stop; 130 SIGINT or SIGTERM (the run file is closed with status "interrupted").
+#include <csignal>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <optional>
+#include <string>
+
+#include "bus/channels.hpp"
+#include "scene/scene_builder.hpp"
+#include "scene/scene_reader.hpp"
+#include "server/lcm_server_bus.hpp"
+#include "server/server_loop.hpp"
+
+namespace tongue::apps {
+namespace {
+
+constexpr int kExitError = 1;
+constexpr const char* kDefaultUrl = "udpm://239.255.76.67:7667?ttl=0";
+
+volatile std::sig_atomic_t g_interrupted = 0;
+extern "C" void on_interrupt(int) {
+  g_interrupted = 1;
+}
+
+struct Options {
+  std::string scene_path;
+  std::string url = kDefaultUrl;
+  std::string prefix{bus::kDefaultChannelPrefix};
+  std::optional<std::string> output;
+  server::ServerOptions server;
+};
+
+void print_usage(std::FILE* to) {
+  std::fprintf(
+      to,
+      "usage: sim_server SCENE.yaml [--mode lockstep|fast] [--lcm-url URL] [--prefix TONGUE_]\n"
+      "                  [--output FILE] [--timeout-ms N] [--on-silence hold|stop]\n"
+      "                  [--max-steps N]\n"
+      "  --mode         lockstep (default): step k+1 when the activation tagged k+1 arrives;\n"
+      "                 fast: free-running, latest activation held\n"
+      "  --lcm-url      LCM provider URL (default %s)\n"
+      "  --prefix       channel prefix, A-Z 0-9 _ (default TONGUE_)\n"
+      "  --output FILE  run file (overrides the scene's output.file)\n"
+      "  --timeout-ms   lock-step silence before a report, ms (default 1000)\n"
+      "  --on-silence   hold (default: keep waiting) or stop (exit 3)\n"
+      "  --max-steps    end (exit 0) once this step is reached\n",
+      kDefaultUrl);
+}
+
+bool parse_integer(const std::string& text, long long& out) {
+  try {
+    std::size_t used = 0;
+    out = std::stoll(text, &used);
+    return used == text.size();
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+std::optional<Options> parse_arguments(int argc, char** argv) {
+  Options o;
+  for (int i = 1; i < argc; ++i) {
+    std::string arg = argv[i];
+    std::optional<std::string> value;
+    if (const auto eq = arg.find('='); arg.rfind("--", 0) == 0 && eq != std::string::npos) {
+      value = arg.substr(eq + 1);
+      arg = arg.substr(0, eq);
+    }
+    if (arg == "--help" || arg == "-h") {
+      print_usage(stdout);
+      std::exit(0);
+    }
+    const bool takes_value = arg == "--mode" || arg == "--lcm-url" || arg == "--prefix" ||
+                             arg == "--output" || arg == "--timeout-ms" || arg == "--on-silence" ||
+                             arg == "--max-steps";
+    if (takes_value && !value) {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "sim_server: %s needs a value\n", arg.c_str());
+        return std::nullopt;
+      }
+      value = argv[++i];
+    }
+    long long number = 0;
+    if (arg == "--mode") {
+      if (*value == "lockstep") {
+        o.server.mode = server::Mode::lockstep;
+      } else if (*value == "fast") {
+        o.server.mode = server::Mode::fast;
+      } else {
+        std::fprintf(stderr, "sim_server: --mode must be lockstep or fast, not '%s'\n",
+                     value->c_str());
+        return std::nullopt;
+      }
+    } else if (arg == "--lcm-url") {
+      o.url = *value;
+    } else if (arg == "--prefix") {
+      o.prefix = *value;
+    } else if (arg == "--output") {
+      o.output = *value;
+    } else if (arg == "--timeout-ms") {
+      if (!parse_integer(*value, number) || number <= 0 || number > 3600000) {
+        std::fprintf(stderr, "sim_server: --timeout-ms must be an integer in [1, 3600000] ms\n");
+        return std::nullopt;
+      }
+      o.server.timeout_ms = static_cast<int>(number);
+    } else if (arg == "--on-silence") {
+      if (*value == "hold") {
+        o.server.on_silence = server::OnSilence::hold;
+      } else if (*value == "stop") {
+        o.server.on_silence = server::OnSilence::stop;
+      } else {
+        std::fprintf(stderr, "sim_server: --on-silence must be hold or stop, not '%s'\n",
+                     value->c_str());
+        return std::nullopt;
+      }
+    } else if (arg == "--max-steps") {
+      if (!parse_integer(*value, number) || number < 0) {
+        std::fprintf(stderr, "sim_server: --max-steps must be an integer >= 0\n");
+        return std::nullopt;
+      }
+      o.server.max_steps = number;
+    } else if (!arg.empty() && arg[0] == '-') {
+      std::fprintf(stderr, "sim_server: unknown option '%s'\n", arg.c_str());
+      return std::nullopt;
+    } else if (o.scene_path.empty()) {
+      o.scene_path = arg;
+    } else {
+      std::fprintf(stderr, "sim_server: more than one scene given ('%s')\n", arg.c_str());
+      return std::nullopt;
+    }
+  }
+  if (o.scene_path.empty()) {
+    std::fprintf(stderr, "sim_server: no scene given\n");
+    return std::nullopt;
+  }
+  return o;
+}
+
+void install_signal_handlers() {
+  // No SA_RESTART: a signal ends the bus wait at once, and the loop sees the flag.
+  struct sigaction action {};
+  action.sa_handler = on_interrupt;
+  sigemptyset(&action.sa_mask);
+  action.sa_flags = 0;
+  sigaction(SIGINT, &action, nullptr);
+  sigaction(SIGTERM, &action, nullptr);
+}
+
+int run(int argc, char** argv) {
+  std::optional<Options> options = parse_arguments(argc, argv);
+  if (!options) {
+    print_usage(stderr);
+    return kExitError;
+  }
+  try {
+    const bus::Channels channels(options->prefix);
+    const scene::Scene scene = scene::read_scene(options->scene_path);
+    scene::BuiltScene built = scene::build_scene(scene);
+    options->server.output = options->output ? *options->output : scene.output.file;
+    install_signal_handlers();
+    server::LcmServerBus bus(options->url, channels);
+    server::ServerLoop loop(scene, std::move(built), bus, options->server,
+                            [] { return g_interrupted != 0; });
+    std::fprintf(stderr, "sim_server: %s, %s mode, bus %s, channels %s*, run file %s\n",
+                 options->scene_path.c_str(),
+                 options->server.mode == server::Mode::lockstep ? "lock-step" : "fast",
+                 options->url.c_str(), options->prefix.c_str(),
+                 options->server.output.empty() ? "none" : options->server.output.c_str());
+    return static_cast<int>(loop.run());
+  } catch (const scene::SceneError& e) {
+    std::fprintf(stderr, "sim_server: scene error: %s\n", e.what());
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "sim_server: error: %s\n", e.what());
+  }
+  return kExitError;
+}
+
+}  // namespace
+}  // namespace tongue::apps
+
+int main(int argc, char** argv) {
+  return tongue::apps::run(argc, argv);
+}

@@ -1,0 +1,28 @@
+#pragma once
+// What the server loop knows of the message bus: it publishes the model and states, and receives
+// raw bytes on its activation and command channels. LcmServerBus (lcm_server_bus.hpp) is the real
+// one; tests can give the loop their own.
+#include <cstdint>
+#include <vector>
+
+#include "bus/messages.hpp"
+
+namespace tongue::server {
+
+struct IncomingMessage {
+  enum class Channel { activation, command };
+  Channel channel = Channel::activation;
+  std::vector<std::uint8_t> bytes;  // as received, not yet decoded
+};
+
+class ServerBus {
+ public:
+  virtual ~ServerBus() = default;
+  virtual void publish_model(const tongue_lcm::lcmt_tongue_model& msg) = 0;
+  virtual void publish_state(const tongue_lcm::lcmt_tongue_state& msg) = 0;
+  // Waits at most timeout_ms (0: does not wait) for incoming messages and returns those that
+  // arrived, in order; empty on timeout.
+  virtual std::vector<IncomingMessage> receive(int timeout_ms) = 0;
+};
+
+}  // namespace tongue::server

@@ -1,0 +1,361 @@
+#include "server/server_loop.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <exception>
+#include <stdexcept>
+#include <utility>
+
+#include "bus/activation_validation.hpp"
+#include "fem/integrator/static_solver.hpp"
+#include "logging/scene_run_file.hpp"
+#include "tongue/default_tongue.hpp"
+
+namespace tongue::server {
+namespace {
+
+// Longest single wait for messages [ms]: the stop predicate is looked at least this often.
+constexpr int kPollSliceMs = 100;
+// Rejections of one kind are reported on stderr at most once per this many seconds.
+constexpr double kReportInterval = 1.0;
+
+double steady_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+std::int64_t wall_utime() {
+  return std::chrono::duration_cast<std::chrono::microseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+}  // namespace
+
+ServerLoop::ServerLoop(const scene::Scene& scene, scene::BuiltScene built, ServerBus& bus,
+                       ServerOptions options, std::function<bool()> stop_requested)
+    : scene_(scene),
+      built_(std::move(built)),
+      bus_(bus),
+      options_(std::move(options)),
+      stop_requested_(std::move(stop_requested)) {
+  if (scene_.analysis.type != scene::AnalysisType::dynamic)
+    throw std::invalid_argument(scene_.source +
+                                ": the server needs a dynamic analysis (analysis.type: dynamic)");
+  if (!built_.muscles || built_.muscles->num_muscles() == 0)
+    throw std::invalid_argument(scene_.source +
+                                ": the server needs muscles (muscles: builtin or a list)");
+  if (options_.timeout_ms <= 0) throw std::invalid_argument("the timeout must be > 0 ms");
+  for (const auto& m : built_.muscles->muscles()) muscle_names_.push_back(m.name);
+  if (!options_.output.empty())
+    log_ = logging::open_scene_run_file(options_.output, scene_, built_);
+}
+
+ServerLoop::~ServerLoop() = default;
+
+ExitStatus ServerLoop::run() {
+  ExitStatus status = ExitStatus::error;
+  try {
+    status = loop();
+  } catch (const std::exception& e) {
+    failure_ = e.what();
+    std::fprintf(stderr, "sim_server: error: %s\n", e.what());
+  }
+  if (log_) {
+    try {
+      std::string text;
+      switch (status) {
+        case ExitStatus::ok:
+          text = "completed";
+          break;
+        case ExitStatus::interrupted:
+          text = "interrupted";
+          break;
+        case ExitStatus::silence:
+          text = "stopped: no activation for " + std::to_string(options_.timeout_ms) + " ms";
+          break;
+        default:
+          text = "failed: " + failure_;
+          break;
+      }
+      log_->set_attribute("status", text);
+      log_->set_attribute("resets", std::to_string(resets_));
+      log_->flush();
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "sim_server: error: %s\n", e.what());
+      status = ExitStatus::error;
+    }
+  }
+  return status;
+}
+
+ExitStatus ServerLoop::loop() {
+  if (!initialize()) return ExitStatus::not_converged;
+  publish_model();
+  log_frame();
+  publish_state("ok");
+  double deadline = steady_seconds() + options_.timeout_ms * 1e-3;
+  while (true) {
+    if (stop_requested_ && stop_requested_()) {
+      std::fprintf(stderr, "sim_server: interrupted at step %lld\n", static_cast<long long>(step_));
+      return ExitStatus::interrupted;
+    }
+    if (!failure_.empty()) return ExitStatus::not_converged;
+    if (shutdown_) return ExitStatus::ok;
+    if (options_.max_steps && step_ >= *options_.max_steps) return ExitStatus::ok;
+
+    const bool free_running = options_.mode == Mode::fast && !paused_;
+    int wait_ms = kPollSliceMs;
+    if (free_running) {
+      wait_ms = 0;
+    } else if (options_.mode == Mode::lockstep && !paused_) {
+      const double left_ms = (deadline - steady_seconds()) * 1e3;
+      wait_ms = std::clamp(static_cast<int>(left_ms) + 1, 0, kPollSliceMs);
+    }
+    const std::int64_t step_before = step_;
+    const std::vector<IncomingMessage> messages = bus_.receive(wait_ms);
+    for (const IncomingMessage& message : messages) {
+      handle(message);
+      if (shutdown_ || !failure_.empty()) break;
+    }
+    if (shutdown_ || !failure_.empty()) continue;
+
+    if (free_running && !paused_) {
+      if (advance(levels_)) continue;
+    }
+    if (options_.mode == Mode::lockstep) {
+      const double now = steady_seconds();
+      if (step_ != step_before || paused_) {
+        deadline = now + options_.timeout_ms * 1e-3;
+      } else if (now >= deadline) {
+        std::fprintf(stderr, "sim_server: no activation for step %lld within %d ms%s\n",
+                     static_cast<long long>(step_ + 1), options_.timeout_ms,
+                     options_.on_silence == OnSilence::stop ? ": stopping" : ", holding");
+        if (options_.on_silence == OnSilence::stop) return ExitStatus::silence;
+        deadline = now + options_.timeout_ms * 1e-3;
+      }
+    }
+  }
+}
+
+bool ServerLoop::initialize() {
+  const int n = built_.solid->num_dofs();
+  fem::Vector u = fem::Vector::Zero(n);
+  built_.muscles->set_activations(fem::Vector::Zero(built_.muscles->num_muscles()));
+  if (scene_.analysis.settle) {
+    // Rest under gravity and loads with every muscle off, as sim_batch starts.
+    const fem::StaticReport report = fem::solve_static(*built_.system, u, built_.static_settings);
+    if (!report.converged) {
+      failure_ = "settling: " + report.message;
+      std::fprintf(stderr, "sim_server: settling failed: %s\n", report.message.c_str());
+      return false;
+    }
+  }
+  initial_u_ = u;
+  restart();
+  return true;
+}
+
+void ServerLoop::restart() {
+  const int m = built_.muscles->num_muscles();
+  levels_ = fem::Vector::Zero(m);
+  built_.muscles->set_activations(levels_);
+  pending_.reset();
+  // A fresh integrator: nothing (factorizations, previous dt) carries over from before a reset,
+  // so a run after a reset repeats the first one exactly.
+  integrator_ = std::make_unique<fem::NewmarkIntegrator>(*built_.system, built_.dynamic_settings);
+  integrator_->initialize(initial_u_, fem::Vector::Zero(initial_u_.size()), 0.0);
+  accepted_u_ = integrator_->displacement();
+  accepted_v_ = integrator_->velocity();
+  step_ = 0;
+  time_ = 0.0;
+  last_report_ = fem::StepReport{};
+  last_report_.converged = true;
+}
+
+bool ServerLoop::advance(const fem::Vector& levels) {
+  levels_ = levels;
+  built_.muscles->set_activations(levels_);
+  const fem::StepReport r = integrator_->step(scene_.analysis.dt);
+  last_report_ = r;
+  if (!r.converged) {
+    failure_ = "step " + std::to_string(step_ + 1) + " failed to converge: " + r.message;
+    std::fprintf(stderr, "sim_server: %s; stopping at the last accepted state\n", failure_.c_str());
+    publish_state(
+        failure_ + "; stopped at the last accepted state (step " + std::to_string(step_) + ")",
+        false);
+    return false;
+  }
+  accepted_u_ = integrator_->displacement();
+  accepted_v_ = integrator_->velocity();
+  ++step_;
+  time_ = integrator_->time();
+  log_frame();
+  publish_state("ok");
+  return true;
+}
+
+void ServerLoop::handle(const IncomingMessage& message) {
+  if (message.channel == IncomingMessage::Channel::activation) {
+    handle_activation(message);
+  } else {
+    handle_command(message);
+  }
+}
+
+void ServerLoop::handle_activation(const IncomingMessage& message) {
+  tongue_lcm::lcmt_tongue_activation msg;
+  std::string reason;
+  if (!bus::decode_activation(message.bytes.data(), static_cast<int>(message.bytes.size()), msg,
+                              reason)) {
+    reject("undecodable activation", reason);
+    return;
+  }
+  const bus::ActivationCheck check = bus::check_activation(
+      msg, muscle_names_, std::vector<double>(levels_.data(), levels_.data() + levels_.size()));
+  if (!check.accepted) {
+    reject("invalid activation", check.reason);
+    return;
+  }
+  const fem::Vector levels = Eigen::Map<const fem::Vector>(
+      check.levels.data(), static_cast<Eigen::Index>(check.levels.size()));
+  if (options_.mode == Mode::fast) {
+    levels_ = levels;  // held from the next step on
+    return;
+  }
+  if (msg.step <= step_) {
+    reject("stale activation",
+           "step " + std::to_string(msg.step) + " <= current step " + std::to_string(step_));
+    return;
+  }
+  if (msg.step > step_ + 1) {
+    reject("future activation",
+           "step " + std::to_string(msg.step) + " > next step " + std::to_string(step_ + 1));
+    return;
+  }
+  if (paused_) {
+    pending_ = levels;  // applied on resume
+    return;
+  }
+  advance(levels);
+}
+
+void ServerLoop::handle_command(const IncomingMessage& message) {
+  tongue_lcm::lcmt_tongue_command msg;
+  const int size = static_cast<int>(message.bytes.size());
+  if (msg.decode(message.bytes.data(), 0, size) != size) {
+    reject("undecodable command",
+           "not a whole lcmt_tongue_command (" + std::to_string(size) + " bytes)");
+    return;
+  }
+  const std::string& c = msg.command;
+  if (c == "shutdown") {
+    std::fprintf(stderr, "sim_server: shutdown at step %lld\n", static_cast<long long>(step_));
+    shutdown_ = true;
+  } else if (c == "describe") {
+    publish_model();
+  } else if (c == "pause") {
+    paused_ = true;
+    publish_state("paused");
+  } else if (c == "resume") {
+    paused_ = false;
+    if (pending_) {
+      const fem::Vector levels = *pending_;
+      pending_.reset();
+      advance(levels);
+    }
+  } else if (c == "reset") {
+    restart();
+    rejected_ = 0;
+    ++resets_;
+    std::fprintf(stderr, "sim_server: reset to step 0\n");
+    log_frame();
+    publish_state(paused_ ? "paused" : "ok");
+  } else {
+    reject("unknown command", "'" + c + "'");
+  }
+}
+
+void ServerLoop::reject(const std::string& kind, const std::string& reason) {
+  ++rejected_;
+  const double now = steady_seconds();
+  const auto it = last_reported_.find(kind);
+  if (it != last_reported_.end() && now - it->second < kReportInterval) {
+    ++unreported_[kind];
+    return;
+  }
+  const int more = unreported_[kind];
+  std::fprintf(stderr, "sim_server: rejected %s at step %lld: %s", kind.c_str(),
+               static_cast<long long>(step_), reason.c_str());
+  if (more > 0) std::fprintf(stderr, " (and %d more of this kind not shown)", more);
+  std::fprintf(stderr, "\n");
+  last_reported_[kind] = now;
+  unreported_[kind] = 0;
+}
+
+void ServerLoop::publish_model() {
+  const fem::Mesh& mesh = built_.solid->mesh();
+  tongue_lcm::lcmt_tongue_model msg;
+  msg.utime = wall_utime();
+  msg.num_nodes = mesh.num_nodes();
+  const fem::Vector& rest = built_.solid->rest_positions();
+  msg.rest_positions.assign(rest.data(), rest.data() + rest.size());
+  msg.num_rest_positions = static_cast<std::int32_t>(msg.rest_positions.size());
+  msg.num_elements = mesh.num_elements();
+  for (const fem::Hex8& e : mesh.elements)
+    msg.elements.insert(msg.elements.end(), e.begin(), e.end());
+  msg.num_element_nodes = static_cast<std::int32_t>(msg.elements.size());
+  msg.muscle_names = muscle_names_;
+  for (const auto& m : built_.muscles->muscles()) msg.muscle_max_forces.push_back(m.max_force);
+  msg.num_muscles = static_cast<std::int32_t>(msg.muscle_names.size());
+  for (const std::string& name : model::landmark_names()) {
+    const auto it = mesh.node_sets.find(name);
+    if (it == mesh.node_sets.end() || it->second.empty()) continue;
+    msg.landmark_names.push_back(name);
+    msg.landmark_nodes.push_back(it->second.front());
+  }
+  msg.num_landmarks = static_cast<std::int32_t>(msg.landmark_names.size());
+  msg.dt = scene_.analysis.dt;
+  msg.scene = scene_.text;
+  bus_.publish_model(msg);
+}
+
+void ServerLoop::publish_state(const std::string& status, bool converged) {
+  const model::MuscleForces& muscles = *built_.muscles;
+  tongue_lcm::lcmt_tongue_state msg;
+  msg.utime = wall_utime();
+  msg.step = step_;
+  msg.time = time_;
+  const int n = built_.solid->mesh().num_nodes();
+  msg.num_nodes = n;
+  msg.node_indices.resize(n);
+  for (int i = 0; i < n; ++i) msg.node_indices[i] = i;
+  const fem::Vector positions = built_.solid->rest_positions() + accepted_u_;
+  msg.positions.assign(positions.data(), positions.data() + positions.size());
+  msg.num_positions = static_cast<std::int32_t>(msg.positions.size());
+  msg.num_muscles = muscles.num_muscles();
+  const fem::Vector lengths = muscles.muscle_lengths(accepted_u_);
+  const fem::Vector velocities = muscles.muscle_velocities(accepted_u_, accepted_v_);
+  msg.muscle_lengths.assign(lengths.data(), lengths.data() + lengths.size());
+  msg.muscle_velocities.assign(velocities.data(), velocities.data() + velocities.size());
+  msg.activations.assign(levels_.data(), levels_.data() + levels_.size());
+  msg.newton_iterations = last_report_.iterations;
+  msg.residual_norm = last_report_.final_residual;
+  msg.step_wall_time = last_report_.wall_seconds;
+  msg.step_cuts = last_report_.cuts;
+  msg.converged = converged;
+  msg.status = status;
+  msg.rejected_messages = rejected_;
+  msg.overruns = 0;
+  bus_.publish_state(msg);
+}
+
+void ServerLoop::log_frame() {
+  if (!log_) return;
+  log_->append(time_, built_.solid->rest_positions() + accepted_u_,
+               {last_report_.iterations, last_report_.final_residual, last_report_.wall_seconds,
+                last_report_.cuts},
+               logging::scene_muscle_frame(built_, accepted_u_, &accepted_v_));
+}
+
+}  // namespace tongue::server

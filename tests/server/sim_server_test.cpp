@@ -1,0 +1,485 @@
+// Runs the real sim_server executable on a real LCM bus (udpm on the loopback) with a small box
+// scene; the test is the controller: it receives the model and the states, sends activations and
+// commands, and reads the run file back with the HDF5 C API.
+#include <fcntl.h>
+#include <gtest/gtest.h>
+#include <hdf5.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cmath>
+#include <deque>
+#include <filesystem>
+#include <functional>
+#include <limits>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <lcm/lcm-cpp.hpp>
+
+#include "bus/channels.hpp"
+#include "bus/messages.hpp"
+#include "support/run_command.hpp"
+#include "support/temp_dir_test.hpp"
+
+#ifndef SIM_SERVER_PATH
+#error "SIM_SERVER_PATH must name the sim_server executable"
+#endif
+
+extern char** environ;
+
+namespace tongue::server {
+namespace {
+
+namespace fs = std::filesystem;
+using tongue_lcm::lcmt_tongue_model;
+using tongue_lcm::lcmt_tongue_state;
+
+// A 40 x 10 x 10 mm block, 4 x 1 x 1 elements (20 nodes), clamped at x = 0, under gravity, with
+// one listed muscle along the free end; dynamic, dt 2 ms: a step takes well under a millisecond.
+const char* const kScene = R"(
+mesh:
+  box: {size: [0.04, 0.01, 0.01], divisions: [4, 1, 1]}
+material:
+  type: mooney_rivlin5
+  density: 1000
+constraints:
+  - {set: x_min, components: [x, y, z]}
+gravity: [0, -9.81, 0]
+muscles:
+  - {name: flexor, max_force: 0.01, elements: [2, 3], fibres: [{nodes: [2, 3, 4]}]}
+damping: {beta: 0.028}
+analysis: {type: dynamic, duration: 0.02, dt: 0.002}
+)";
+
+constexpr double kDt = 0.002;      // s, the scene's
+constexpr int kWaitMs = 5000;      // longest wait for one expected message
+constexpr int kExitWaitMs = 5000;  // longest wait for the server to exit
+
+std::string bus_url(int port) {
+  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
+}
+
+// The sim_server process, killed (SIGKILL) when the guard goes out of scope still running, so
+// that a failing test never leaves a server behind.
+class ServerProcess {
+ public:
+  ServerProcess(const std::vector<std::string>& args, const fs::path& dir) {
+    const std::string out = (dir / "server_stdout.txt").string();
+    err_path_ = dir / "server_stderr.txt";
+    const std::string err = err_path_.string();
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    std::vector<std::string> all{SIM_SERVER_PATH};
+    all.insert(all.end(), args.begin(), args.end());
+    std::vector<char*> argv;
+    for (std::string& a : all) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    if (posix_spawn(&pid_, SIM_SERVER_PATH, &actions, nullptr, argv.data(), environ) != 0)
+      pid_ = -1;
+    posix_spawn_file_actions_destroy(&actions);
+  }
+  ~ServerProcess() {
+    if (pid_ > 0) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, nullptr, 0);
+    }
+  }
+  ServerProcess(const ServerProcess&) = delete;
+  ServerProcess& operator=(const ServerProcess&) = delete;
+
+  bool started() const { return pid_ > 0; }
+  void signal(int sig) const {
+    if (pid_ > 0) kill(pid_, sig);
+  }
+
+  // The exit status, or nullopt when it has not exited within timeout_ms (or died of a signal).
+  std::optional<int> wait_exit(int timeout_ms) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+    while (pid_ > 0) {
+      int status = 0;
+      const pid_t r = waitpid(pid_, &status, WNOHANG);
+      if (r == pid_) {
+        pid_ = -1;
+        if (WIFEXITED(status)) return WEXITSTATUS(status);
+        return std::nullopt;
+      }
+      if (std::chrono::steady_clock::now() > end) return std::nullopt;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return std::nullopt;
+  }
+
+  std::string stderr_text() const { return testing::read_text(err_path_); }
+
+ private:
+  pid_t pid_ = -1;
+  fs::path err_path_;
+};
+
+// The test's side of the bus: subscribed to the server's state and model channels before the
+// server starts, so that nothing it publishes is missed.
+class Controller {
+ public:
+  explicit Controller(const std::string& url) : lcm_(url) {
+    lcm_.subscribe(channels_.state, &Controller::on_state, this);
+    lcm_.subscribe(channels_.model, &Controller::on_model, this);
+  }
+  bool good() { return lcm_.good(); }
+
+  // The next state (received states before it are dropped) for which accept is true.
+  std::optional<lcmt_tongue_state> wait_state(
+      const std::function<bool(const lcmt_tongue_state&)>& accept, int timeout_ms = kWaitMs) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+    while (true) {
+      while (!states_.empty()) {
+        lcmt_tongue_state s = std::move(states_.front());
+        states_.pop_front();
+        if (accept(s)) return s;
+      }
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                            end - std::chrono::steady_clock::now())
+                            .count();
+      if (left <= 0) return std::nullopt;
+      lcm_.handleTimeout(static_cast<int>(left));
+    }
+  }
+  std::optional<lcmt_tongue_state> wait_step(std::int64_t step, int timeout_ms = kWaitMs) {
+    return wait_state([step](const lcmt_tongue_state& s) { return s.step == step; }, timeout_ms);
+  }
+  std::optional<lcmt_tongue_model> wait_model(int timeout_ms = kWaitMs) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+    while (models_.empty()) {
+      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
+                            end - std::chrono::steady_clock::now())
+                            .count();
+      if (left <= 0) return std::nullopt;
+      lcm_.handleTimeout(static_cast<int>(left));
+    }
+    lcmt_tongue_model m = std::move(models_.front());
+    models_.pop_front();
+    return m;
+  }
+
+  void send_activation(std::int64_t step, const std::vector<std::string>& names,
+                       const std::vector<double>& levels) {
+    tongue_lcm::lcmt_tongue_activation msg;
+    msg.utime = 0;
+    msg.step = step;
+    msg.num_muscles = static_cast<std::int32_t>(names.size());
+    msg.names = names;
+    msg.levels = levels;
+    lcm_.publish(channels_.activation, &msg);
+  }
+  void send_command(const std::string& command) {
+    tongue_lcm::lcmt_tongue_command msg;
+    msg.utime = 0;
+    msg.command = command;
+    lcm_.publish(channels_.command, &msg);
+  }
+
+ private:
+  void on_state(const lcm::ReceiveBuffer*, const std::string&, const lcmt_tongue_state* s) {
+    states_.push_back(*s);
+  }
+  void on_model(const lcm::ReceiveBuffer*, const std::string&, const lcmt_tongue_model* m) {
+    models_.push_back(*m);
+  }
+
+  lcm::LCM lcm_;
+  bus::Channels channels_;
+  std::deque<lcmt_tongue_state> states_;
+  std::deque<lcmt_tongue_model> models_;
+};
+
+// Minimal read-only access to a run file.
+class RunFile {
+ public:
+  explicit RunFile(const fs::path& p) : file_(H5Fopen(p.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT)) {}
+  ~RunFile() {
+    if (file_ >= 0) H5Fclose(file_);
+  }
+  RunFile(const RunFile&) = delete;
+  RunFile& operator=(const RunFile&) = delete;
+  bool ok() const { return file_ >= 0; }
+
+  std::vector<double> doubles(const std::string& name) const {
+    std::vector<double> out;
+    const hid_t ds = H5Dopen2(file_, name.c_str(), H5P_DEFAULT);
+    if (ds < 0) return out;
+    const hid_t space = H5Dget_space(ds);
+    out.resize(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
+    H5Sclose(space);
+    if (!out.empty() &&
+        H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
+      out.clear();
+    H5Dclose(ds);
+    return out;
+  }
+
+  std::string string_attribute(const std::string& name) const {
+    const hid_t attr = H5Aopen_by_name(file_, "/", name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
+    if (attr < 0) return "<missing>";
+    const hid_t type = H5Aget_type(attr);
+    std::string value;
+    if (H5Tis_variable_str(type) > 0) {
+      char* s = nullptr;
+      H5Aread(attr, type, &s);
+      value = s ? s : "";
+      H5free_memory(s);
+    } else {
+      std::vector<char> buf(H5Tget_size(type) + 1, '\0');
+      H5Aread(attr, type, buf.data());
+      value = buf.data();
+    }
+    H5Tclose(type);
+    H5Aclose(attr);
+    return value;
+  }
+
+ private:
+  hid_t file_;
+};
+
+class SimServer : public testing::TempDirTest {
+ protected:
+  // Starts the server in lock-step mode on port with the run file run.h5 (plus extra arguments)
+  // after the controller has subscribed.
+  void start(int port, const std::vector<std::string>& extra = {}) {
+    url_ = bus_url(port);
+    controller_ = std::make_unique<Controller>(url_);
+    ASSERT_TRUE(controller_->good());
+    std::vector<std::string> args{write("scene.yaml", kScene), "--lcm-url", url_, "--output",
+                                  (dir_ / "run.h5").string()};
+    args.insert(args.end(), extra.begin(), extra.end());
+    server_ = std::make_unique<ServerProcess>(args, dir_);
+    ASSERT_TRUE(server_->started());
+  }
+
+  // Sends the activation tagged step with level, and returns the state of that step.
+  lcmt_tongue_state step_to(std::int64_t step, double level) {
+    controller_->send_activation(step, {"flexor"}, {level});
+    const auto s = controller_->wait_step(step);
+    EXPECT_TRUE(s) << "no state for step " << step << "\n" << server_->stderr_text();
+    return s ? *s : lcmt_tongue_state{};
+  }
+
+  // Sends shutdown and returns the exit status (-1: did not exit in time).
+  int shut_down() {
+    controller_->send_command("shutdown");
+    return server_->wait_exit(kExitWaitMs).value_or(-1);
+  }
+
+  std::string url_;
+  std::unique_ptr<Controller> controller_;
+  std::unique_ptr<ServerProcess> server_;
+};
+
+TEST_F(SimServer, LockStepAdvancesOneStepPerActivationAndShutsDownCleanly) {
+  start(7701);
+  const auto model = controller_->wait_model();
+  ASSERT_TRUE(model) << server_->stderr_text();
+  EXPECT_EQ(model->num_nodes, 20);
+  EXPECT_EQ(model->num_elements, 4);
+  EXPECT_EQ(model->muscle_names, (std::vector<std::string>{"flexor"}));
+  EXPECT_EQ(model->muscle_max_forces, (std::vector<double>{0.01}));
+  EXPECT_DOUBLE_EQ(model->dt, kDt);
+  const auto s0 = controller_->wait_step(0);
+  ASSERT_TRUE(s0) << server_->stderr_text();
+  EXPECT_EQ(s0->num_nodes, 20);
+  EXPECT_EQ(s0->positions, model->rest_positions);  // not settled: starts at rest
+  EXPECT_EQ(s0->activations, (std::vector<double>{0.0}));
+  EXPECT_DOUBLE_EQ(s0->muscle_lengths.at(0), 0.02);  // two 10 mm segments
+
+  constexpr int kSteps = 10;
+  for (int k = 1; k <= kSteps; ++k) {
+    const lcmt_tongue_state s = step_to(k, 0.1 * k / kSteps + 0.4);
+    ASSERT_EQ(s.step, k);
+    EXPECT_NEAR(s.time, k * kDt, 1e-12);
+    EXPECT_EQ(s.activations, (std::vector<double>{0.1 * k / kSteps + 0.4}));
+    EXPECT_TRUE(s.converged);
+    EXPECT_EQ(s.status, "ok");
+    EXPECT_EQ(s.rejected_messages, 0);
+    EXPECT_EQ(s.num_positions, 60);
+    EXPECT_EQ(s.muscle_velocities.size(), 1u);
+    EXPECT_GT(s.newton_iterations, 0);
+  }
+  // describe publishes the model again.
+  controller_->send_command("describe");
+  EXPECT_TRUE(controller_->wait_model());
+
+  EXPECT_EQ(shut_down(), 0) << server_->stderr_text();
+  const RunFile f(dir_ / "run.h5");
+  ASSERT_TRUE(f.ok());
+  EXPECT_EQ(f.doubles("/time").size(), static_cast<std::size_t>(kSteps + 1));
+  EXPECT_EQ(f.doubles("/activations").back(), 0.5);
+  EXPECT_EQ(f.string_attribute("status"), "completed");
+}
+
+// A bad activation message is counted and changes nothing: after it, a pause publishes the
+// state again (same step, positions and activations, one more rejection), and the next valid
+// activation still advances.
+struct BadActivation {
+  const char* name;
+  int port;
+  std::function<void(Controller&)> send;  // sent when the server is at step 1
+};
+
+void PrintTo(const BadActivation& bad, std::ostream* os) {
+  *os << bad.name;
+}
+
+class SimServerRejects : public SimServer, public ::testing::WithParamInterface<BadActivation> {};
+
+TEST_P(SimServerRejects, CountsTheMessageAndLeavesTheStateUnchanged) {
+  start(GetParam().port);
+  ASSERT_TRUE(controller_->wait_step(0)) << server_->stderr_text();
+  const lcmt_tongue_state s1 = step_to(1, 0.5);
+  ASSERT_EQ(s1.step, 1);
+  GetParam().send(*controller_);
+  controller_->send_command("pause");
+  const auto paused =
+      controller_->wait_state([](const lcmt_tongue_state& s) { return s.status == "paused"; });
+  ASSERT_TRUE(paused) << server_->stderr_text();
+  EXPECT_EQ(paused->rejected_messages, 1);
+  EXPECT_EQ(paused->step, 1);
+  EXPECT_EQ(paused->positions, s1.positions);
+  EXPECT_EQ(paused->activations, s1.activations);
+  controller_->send_command("resume");
+  const lcmt_tongue_state s2 = step_to(2, 0.25);
+  EXPECT_EQ(s2.step, 2);
+  EXPECT_EQ(s2.activations, (std::vector<double>{0.25}));
+  EXPECT_EQ(s2.rejected_messages, 1);
+  EXPECT_EQ(shut_down(), 0) << server_->stderr_text();
+  EXPECT_NE(server_->stderr_text().find("rejected"), std::string::npos) << server_->stderr_text();
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    Kinds, SimServerRejects,
+    ::testing::Values(
+        BadActivation{"UnknownName", 7702,
+                      [](Controller& c) { c.send_activation(2, {"extensor"}, {0.5}); }},
+        BadActivation{"NaNLevel", 7703,
+                      [](Controller& c) {
+                        c.send_activation(2, {"flexor"},
+                                          {std::numeric_limits<double>::quiet_NaN()});
+                      }},
+        BadActivation{"StaleStep", 7704,
+                      [](Controller& c) { c.send_activation(1, {"flexor"}, {0.9}); }},
+        BadActivation{"FutureStep", 7705,
+                      [](Controller& c) { c.send_activation(3, {"flexor"}, {0.9}); }},
+        BadActivation{"ApplyNowInLockStep", 7706,
+                      [](Controller& c) { c.send_activation(-1, {"flexor"}, {0.9}); }}),
+    [](const ::testing::TestParamInfo<BadActivation>& info) { return info.param.name; });
+
+// Two lock-step runs with the same activations give bit-identical positions.
+TEST_F(SimServer, LockStepRunsAreDeterministic) {
+  std::vector<std::vector<double>> positions;
+  for (int run = 0; run < 2; ++run) {
+    start(7707 + run);
+    ASSERT_TRUE(controller_->wait_step(0)) << server_->stderr_text();
+    for (int k = 1; k <= 8; ++k) ASSERT_EQ(step_to(k, (k % 3) / 2.0).step, k);
+    ASSERT_EQ(shut_down(), 0) << server_->stderr_text();
+    const RunFile f(dir_ / "run.h5");
+    positions.push_back(f.doubles("/positions"));
+    ASSERT_EQ(positions.back().size(), 9u * 60u);
+  }
+  EXPECT_EQ(positions[0], positions[1]);
+}
+
+TEST_F(SimServer, ResetReturnsToTheInitialStateAndRepeatsTheRun) {
+  start(7709);
+  const auto s0 = controller_->wait_step(0);
+  ASSERT_TRUE(s0) << server_->stderr_text();
+  const lcmt_tongue_state first = step_to(1, 0.7);
+  step_to(2, 0.7);
+  controller_->send_command("reset");
+  const auto again = controller_->wait_step(0);
+  ASSERT_TRUE(again) << server_->stderr_text();
+  EXPECT_EQ(again->positions, s0->positions);
+  EXPECT_EQ(again->activations, (std::vector<double>{0.0}));
+  const lcmt_tongue_state repeated = step_to(1, 0.7);
+  EXPECT_EQ(repeated.positions, first.positions);
+  EXPECT_EQ(shut_down(), 0) << server_->stderr_text();
+}
+
+TEST_F(SimServer, SilenceStopsTheServerWhenAskedTo) {
+  start(7710, {"--timeout-ms", "200", "--on-silence", "stop"});
+  ASSERT_TRUE(controller_->wait_step(0)) << server_->stderr_text();
+  EXPECT_EQ(server_->wait_exit(kExitWaitMs), 3);
+  EXPECT_NE(server_->stderr_text().find("no activation for step 1 within 200 ms"),
+            std::string::npos)
+      << server_->stderr_text();
+  const RunFile f(dir_ / "run.h5");
+  EXPECT_EQ(f.string_attribute("status"), "stopped: no activation for 200 ms");
+}
+
+TEST_F(SimServer, SigtermClosesTheRunFile) {
+  start(7711);
+  ASSERT_TRUE(controller_->wait_step(0)) << server_->stderr_text();
+  step_to(1, 0.5);
+  server_->signal(SIGTERM);
+  EXPECT_EQ(server_->wait_exit(kExitWaitMs), 130);
+  const RunFile f(dir_ / "run.h5");
+  ASSERT_TRUE(f.ok());
+  EXPECT_EQ(f.doubles("/time").size(), 2u);
+  EXPECT_EQ(f.string_attribute("status"), "interrupted");
+}
+
+TEST_F(SimServer, FastModeRunsFreelyToMaxSteps) {
+  start(7712, {"--mode", "fast", "--max-steps", "30"});
+  EXPECT_EQ(server_->wait_exit(kExitWaitMs), 0) << server_->stderr_text();
+  EXPECT_TRUE(controller_->wait_step(30));
+  const RunFile f(dir_ / "run.h5");
+  EXPECT_EQ(f.doubles("/time").size(), 31u);
+  EXPECT_EQ(f.string_attribute("status"), "completed");
+}
+
+// A step that does not converge even after cuts is published with converged = false and the last
+// accepted state, and ends the server with exit status 2; the run file keeps the accepted steps.
+TEST_F(SimServer, UnconvergedStepIsPublishedAndStopsTheServer) {
+  std::string text = kScene;
+  text += "solver: {max_iterations: 1}\n";
+  text.replace(text.find("dt: 0.002}"), 10, "dt: 0.002, max_cuts: 0}");
+  write("scene.yaml", text);
+  url_ = bus_url(7714);
+  controller_ = std::make_unique<Controller>(url_);
+  server_ = std::make_unique<ServerProcess>(
+      std::vector<std::string>{(dir_ / "scene.yaml").string(), "--lcm-url", url_, "--output",
+                               (dir_ / "run.h5").string()},
+      dir_);
+  const auto s0 = controller_->wait_step(0);
+  ASSERT_TRUE(s0) << server_->stderr_text();
+  controller_->send_activation(1, {"flexor"}, {0.5});
+  const auto failed =
+      controller_->wait_state([](const lcmt_tongue_state& s) { return !s.converged; });
+  ASSERT_TRUE(failed) << server_->stderr_text();
+  EXPECT_EQ(failed->step, 0);
+  EXPECT_EQ(failed->positions, s0->positions);
+  EXPECT_NE(failed->status.find("step 1 failed to converge"), std::string::npos) << failed->status;
+  EXPECT_EQ(server_->wait_exit(kExitWaitMs), 2);
+  const RunFile f(dir_ / "run.h5");
+  EXPECT_EQ(f.doubles("/time").size(), 1u);
+  EXPECT_EQ(f.string_attribute("status").rfind("failed: step 1 failed to converge", 0), 0u);
+}
+
+TEST_F(SimServer, SceneWithoutMusclesIsAClearError) {
+  std::string text = kScene;
+  text.erase(text.find("muscles:"), text.find("damping:") - text.find("muscles:"));
+  const testing::RunResult r = testing::run_command(
+      SIM_SERVER_PATH, "'" + write("scene.yaml", text) + "' --lcm-url '" + bus_url(7713) + "'",
+      dir_);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("the server needs muscles"), std::string::npos) << r.err;
+}
+
+}  // namespace
+}  // namespace tongue::server
