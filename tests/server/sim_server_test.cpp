@@ -26,6 +26,7 @@
 #include "bus/channels.hpp"
 #include "bus/messages.hpp"
 #include "support/run_command.hpp"
+#include "support/run_file.hpp"
 #include "support/temp_dir_test.hpp"
 
 #ifndef SIM_SERVER_PATH
@@ -200,54 +201,7 @@ class Controller {
   std::deque<lcmt_tongue_model> models_;
 };
 
-// Minimal read-only access to a run file.
-class RunFile {
- public:
-  explicit RunFile(const fs::path& p) : file_(H5Fopen(p.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT)) {}
-  ~RunFile() {
-    if (file_ >= 0) H5Fclose(file_);
-  }
-  RunFile(const RunFile&) = delete;
-  RunFile& operator=(const RunFile&) = delete;
-  bool ok() const { return file_ >= 0; }
-
-  std::vector<double> doubles(const std::string& name) const {
-    std::vector<double> out;
-    const hid_t ds = H5Dopen2(file_, name.c_str(), H5P_DEFAULT);
-    if (ds < 0) return out;
-    const hid_t space = H5Dget_space(ds);
-    out.resize(static_cast<std::size_t>(H5Sget_simple_extent_npoints(space)));
-    H5Sclose(space);
-    if (!out.empty() &&
-        H5Dread(ds, H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT, out.data()) < 0)
-      out.clear();
-    H5Dclose(ds);
-    return out;
-  }
-
-  std::string string_attribute(const std::string& name) const {
-    const hid_t attr = H5Aopen_by_name(file_, "/", name.c_str(), H5P_DEFAULT, H5P_DEFAULT);
-    if (attr < 0) return "<missing>";
-    const hid_t type = H5Aget_type(attr);
-    std::string value;
-    if (H5Tis_variable_str(type) > 0) {
-      char* s = nullptr;
-      H5Aread(attr, type, &s);
-      value = s ? s : "";
-      H5free_memory(s);
-    } else {
-      std::vector<char> buf(H5Tget_size(type) + 1, '\0');
-      H5Aread(attr, type, buf.data());
-      value = buf.data();
-    }
-    H5Tclose(type);
-    H5Aclose(attr);
-    return value;
-  }
-
- private:
-  hid_t file_;
-};
+using testing::RunFile;
 
 class SimServer : public testing::TempDirTest {
  protected:
@@ -321,7 +275,7 @@ TEST_F(SimServer, LockStepAdvancesOneStepPerActivationAndShutsDownCleanly) {
   ASSERT_TRUE(f.ok());
   EXPECT_EQ(f.doubles("/time").size(), static_cast<std::size_t>(kSteps + 1));
   EXPECT_EQ(f.doubles("/activations").back(), 0.5);
-  EXPECT_EQ(f.string_attribute("status"), "completed");
+  EXPECT_EQ(f.string_attribute("/", "status"), "completed");
 }
 
 // A bad activation message is counted and changes nothing: after it, a pause publishes the
@@ -419,7 +373,7 @@ TEST_F(SimServer, SilenceStopsTheServerWhenAskedTo) {
             std::string::npos)
       << server_->stderr_text();
   const RunFile f(dir_ / "run.h5");
-  EXPECT_EQ(f.string_attribute("status"), "stopped: no activation for 200 ms");
+  EXPECT_EQ(f.string_attribute("/", "status"), "stopped: no activation for 200 ms");
 }
 
 TEST_F(SimServer, SigtermClosesTheRunFile) {
@@ -431,7 +385,7 @@ TEST_F(SimServer, SigtermClosesTheRunFile) {
   const RunFile f(dir_ / "run.h5");
   ASSERT_TRUE(f.ok());
   EXPECT_EQ(f.doubles("/time").size(), 2u);
-  EXPECT_EQ(f.string_attribute("status"), "interrupted");
+  EXPECT_EQ(f.string_attribute("/", "status"), "interrupted");
 }
 
 TEST_F(SimServer, FastModeRunsFreelyToMaxSteps) {
@@ -440,7 +394,7 @@ TEST_F(SimServer, FastModeRunsFreelyToMaxSteps) {
   EXPECT_TRUE(controller_->wait_step(30));
   const RunFile f(dir_ / "run.h5");
   EXPECT_EQ(f.doubles("/time").size(), 31u);
-  EXPECT_EQ(f.string_attribute("status"), "completed");
+  EXPECT_EQ(f.string_attribute("/", "status"), "completed");
 }
 
 // A step that does not converge even after cuts is published with converged = false and the last
@@ -468,7 +422,7 @@ TEST_F(SimServer, UnconvergedStepIsPublishedAndStopsTheServer) {
   EXPECT_EQ(server_->wait_exit(kExitWaitMs), 2);
   const RunFile f(dir_ / "run.h5");
   EXPECT_EQ(f.doubles("/time").size(), 1u);
-  EXPECT_EQ(f.string_attribute("status").rfind("failed: step 1 failed to converge", 0), 0u);
+  EXPECT_EQ(f.string_attribute("/", "status").rfind("failed: step 1 failed to converge", 0), 0u);
 }
 
 TEST_F(SimServer, SceneWithoutMusclesIsAClearError) {
