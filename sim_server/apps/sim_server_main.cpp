@@ -1,15 +1,18 @@
-// sim_server SCENE.yaml [--mode lockstep|fast] [--lcm-url URL] [--prefix TONGUE_]
-//            [--output FILE] [--timeout-ms N] [--on-silence hold|stop] [--max-steps N]
+// sim_server SCENE.yaml [--mode lockstep|fast|realtime] [--lcm-url URL] [--prefix TONGUE_]
+//            [--output FILE] [--timeout-ms N] [--silence-s S] [--on-silence hold|stop|decay]
+//            [--max-steps N] [--nodes all|surface|midsagittal|landmarks] [--publish-every K]
 //
 // Runs a dynamic scene with muscles on the LCM bus (server/server_loop.hpp): publishes the model
 // and the state of step 0, then advances under activation messages (lock-step: one step per
-// activation tagged with the next step; fast: free-running with the latest activation), logging
-// every step to the run file when one is given (--output or the scene's output.file).
+// activation tagged with the next step; fast: free-running with the latest activation; realtime:
+// as fast, paced to the wall clock, overruns counted), logging every step to the run file when
+// one is given (--output or the scene's output.file).
 //
-// Exit status: 0 shutdown command or --max-steps reached; 1 bad command line, scene error, bus or
-// I/O error; 2 a step failed to converge even after cuts (its state is published with
-// converged = false; the run file keeps the accepted steps); 3 lock-step silence with
-// --on-silence stop; 130 SIGINT or SIGTERM (the run file is closed with status "interrupted").
+// Exit status: 0 shutdown command or --max-steps reached; 1 bad command line, scene error (e.g.
+// a mesh without the sets --nodes needs), bus or I/O error; 2 a step failed to converge even
+// after cuts (its state is published with converged = false; the run file keeps the accepted
+// steps); 3 silence with --on-silence stop (lock-step or realtime); 130 SIGINT or SIGTERM (the
+// run file is closed with status "interrupted").
 #include <csignal>
 #include <cstdio>
 #include <cstdlib>
@@ -45,17 +48,23 @@ struct Options {
 void print_usage(std::FILE* to) {
   std::fprintf(
       to,
-      "usage: sim_server SCENE.yaml [--mode lockstep|fast] [--lcm-url URL] [--prefix TONGUE_]\n"
-      "                  [--output FILE] [--timeout-ms N] [--on-silence hold|stop]\n"
-      "                  [--max-steps N]\n"
-      "  --mode         lockstep (default): step k+1 when the activation tagged k+1 arrives;\n"
-      "                 fast: free-running, latest activation held\n"
-      "  --lcm-url      LCM provider URL (default %s)\n"
-      "  --prefix       channel prefix, A-Z 0-9 _ (default TONGUE_)\n"
-      "  --output FILE  run file (overrides the scene's output.file)\n"
-      "  --timeout-ms   lock-step silence before a report, ms (default 1000)\n"
-      "  --on-silence   hold (default: keep waiting) or stop (exit 3)\n"
-      "  --max-steps    end (exit 0) once this step is reached\n",
+      "usage: sim_server SCENE.yaml [--mode lockstep|fast|realtime] [--lcm-url URL]\n"
+      "                  [--prefix TONGUE_] [--output FILE] [--timeout-ms N] [--silence-s S]\n"
+      "                  [--on-silence hold|stop|decay] [--max-steps N]\n"
+      "                  [--nodes all|surface|midsagittal|landmarks] [--publish-every K]\n"
+      "  --mode          lockstep (default): step k+1 when the activation tagged k+1 arrives;\n"
+      "                  fast: free-running, latest activation held;\n"
+      "                  realtime: as fast, one step per dt of wall-clock time\n"
+      "  --lcm-url       LCM provider URL (default %s)\n"
+      "  --prefix        channel prefix, A-Z 0-9 _ (default TONGUE_)\n"
+      "  --output FILE   run file (overrides the scene's output.file)\n"
+      "  --timeout-ms    lock-step silence before a report, ms (default 1000)\n"
+      "  --silence-s     realtime silence before --on-silence acts, s (default 0.5)\n"
+      "  --on-silence    hold (default: keep waiting / keep the activation), stop (exit 3),\n"
+      "                  decay (realtime only: all activations to 0)\n"
+      "  --max-steps     end (exit 0) once this step is reached\n"
+      "  --nodes         nodes the states carry: all (default), surface, midsagittal, landmarks\n"
+      "  --publish-every fast and realtime: publish the state every K steps (default 1)\n",
       kDefaultUrl);
 }
 
@@ -67,6 +76,28 @@ bool parse_integer(const std::string& text, long long& out) {
   } catch (const std::exception&) {
     return false;
   }
+}
+
+bool parse_number(const std::string& text, double& out) {
+  try {
+    std::size_t used = 0;
+    out = std::stod(text, &used);
+    return used == text.size();
+  } catch (const std::exception&) {
+    return false;
+  }
+}
+
+const char* mode_name(server::Mode mode) {
+  switch (mode) {
+    case server::Mode::lockstep:
+      return "lock-step";
+    case server::Mode::fast:
+      return "fast";
+    case server::Mode::realtime:
+      return "real-time";
+  }
+  return "?";
 }
 
 std::optional<Options> parse_arguments(int argc, char** argv) {
@@ -84,7 +115,8 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
     }
     const bool takes_value = arg == "--mode" || arg == "--lcm-url" || arg == "--prefix" ||
                              arg == "--output" || arg == "--timeout-ms" || arg == "--on-silence" ||
-                             arg == "--max-steps";
+                             arg == "--max-steps" || arg == "--silence-s" || arg == "--nodes" ||
+                             arg == "--publish-every";
     if (takes_value && !value) {
       if (i + 1 >= argc) {
         std::fprintf(stderr, "sim_server: %s needs a value\n", arg.c_str());
@@ -98,8 +130,10 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
         o.server.mode = server::Mode::lockstep;
       } else if (*value == "fast") {
         o.server.mode = server::Mode::fast;
+      } else if (*value == "realtime") {
+        o.server.mode = server::Mode::realtime;
       } else {
-        std::fprintf(stderr, "sim_server: --mode must be lockstep or fast, not '%s'\n",
+        std::fprintf(stderr, "sim_server: --mode must be lockstep, fast or realtime, not '%s'\n",
                      value->c_str());
         return std::nullopt;
       }
@@ -120,8 +154,10 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
         o.server.on_silence = server::OnSilence::hold;
       } else if (*value == "stop") {
         o.server.on_silence = server::OnSilence::stop;
+      } else if (*value == "decay") {
+        o.server.on_silence = server::OnSilence::decay;
       } else {
-        std::fprintf(stderr, "sim_server: --on-silence must be hold or stop, not '%s'\n",
+        std::fprintf(stderr, "sim_server: --on-silence must be hold, stop or decay, not '%s'\n",
                      value->c_str());
         return std::nullopt;
       }
@@ -131,6 +167,35 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
         return std::nullopt;
       }
       o.server.max_steps = number;
+    } else if (arg == "--silence-s") {
+      double seconds = 0.0;
+      if (!parse_number(*value, seconds) || !(seconds > 0.0) || seconds > 3600.0) {
+        std::fprintf(stderr, "sim_server: --silence-s must be a number in (0, 3600] s\n");
+        return std::nullopt;
+      }
+      o.server.silence_s = seconds;
+    } else if (arg == "--nodes") {
+      if (*value == "all") {
+        o.server.nodes = server::Nodes::all;
+      } else if (*value == "surface") {
+        o.server.nodes = server::Nodes::surface;
+      } else if (*value == "midsagittal") {
+        o.server.nodes = server::Nodes::midsagittal;
+      } else if (*value == "landmarks") {
+        o.server.nodes = server::Nodes::landmarks;
+      } else {
+        std::fprintf(stderr,
+                     "sim_server: --nodes must be all, surface, midsagittal or landmarks, not "
+                     "'%s'\n",
+                     value->c_str());
+        return std::nullopt;
+      }
+    } else if (arg == "--publish-every") {
+      if (!parse_integer(*value, number) || number < 1 || number > 1000000000) {
+        std::fprintf(stderr, "sim_server: --publish-every must be an integer >= 1\n");
+        return std::nullopt;
+      }
+      o.server.publish_every = static_cast<int>(number);
     } else if (!arg.empty() && arg[0] == '-') {
       std::fprintf(stderr, "sim_server: unknown option '%s'\n", arg.c_str());
       return std::nullopt;
@@ -143,6 +208,16 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
   }
   if (o.scene_path.empty()) {
     std::fprintf(stderr, "sim_server: no scene given\n");
+    return std::nullopt;
+  }
+  if (o.server.mode == server::Mode::lockstep && o.server.publish_every != 1) {
+    std::fprintf(stderr,
+                 "sim_server: --publish-every applies to --mode fast and realtime only (lock-step "
+                 "publishes every step)\n");
+    return std::nullopt;
+  }
+  if (o.server.mode != server::Mode::realtime && o.server.on_silence == server::OnSilence::decay) {
+    std::fprintf(stderr, "sim_server: --on-silence decay needs --mode realtime\n");
     return std::nullopt;
   }
   return o;
@@ -174,9 +249,8 @@ int run(int argc, char** argv) {
     server::ServerLoop loop(scene, std::move(built), bus, options->server,
                             [] { return g_interrupted != 0; });
     std::fprintf(stderr, "sim_server: %s, %s mode, bus %s, channels %s*, run file %s\n",
-                 options->scene_path.c_str(),
-                 options->server.mode == server::Mode::lockstep ? "lock-step" : "fast",
-                 options->url.c_str(), options->prefix.c_str(),
+                 options->scene_path.c_str(), mode_name(options->server.mode), options->url.c_str(),
+                 options->prefix.c_str(),
                  options->server.output.empty() ? "none" : options->server.output.c_str());
     return static_cast<int>(loop.run());
   } catch (const scene::SceneError& e) {

@@ -8,6 +8,8 @@
 #include <filesystem>
 #include <vector>
 
+#include "logging/xdmf_sidecar.hpp"
+
 namespace tongue::logging {
 
 namespace {
@@ -306,6 +308,25 @@ PositionLog::PositionLog(const std::string& path, const fem::Mesh& mesh,
 PositionLog::~PositionLog() {
   const QuietErrors quiet;
   if (h_ && h_->file.get() >= 0) H5Fflush(h_->file.get(), H5F_SCOPE_LOCAL);
+  // The XDMF sidecar <run>.xmf for ParaView, written once at close: it lists every frame, so
+  // rewriting it at each flush would cost O(frames) per second of a long run.
+  try {
+    XdmfRun run;
+    run.h5_file = std::filesystem::path(path_).filename().string();
+    run.num_nodes = num_nodes_;
+    run.times.resize(static_cast<std::size_t>(frames_));
+    if (frames_ > 0 && H5Dread(h_->time.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                               run.times.data()) < 0)
+      run.times.clear();
+    const Id elements(H5Dopen2(h_->file.get(), "elements", H5P_DEFAULT), H5Dclose);
+    const Id element_space(H5Dget_space(elements.get()), H5Sclose);
+    hsize_t dims[2] = {0, 0};
+    if (H5Sget_simple_extent_dims(element_space.get(), dims, nullptr) == 2) {
+      run.num_elements = static_cast<long long>(dims[0]);
+      write_xdmf_sidecar(xdmf_sidecar_path(path_), run);
+    }
+  } catch (...) {  // a missing sidecar is no reason to fail a run
+  }
   // Datasets close before the file (members destroyed in reverse order of declaration).
 }
 

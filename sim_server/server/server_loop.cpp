@@ -4,11 +4,14 @@
 #include <chrono>
 #include <cstdio>
 #include <exception>
+#include <numeric>
 #include <stdexcept>
+#include <thread>
 #include <utility>
 
 #include "bus/activation_validation.hpp"
 #include "fem/integrator/static_solver.hpp"
+#include "fem/mesh/boundary_faces.hpp"
 #include "logging/scene_run_file.hpp"
 #include "tongue/default_tongue.hpp"
 
@@ -19,6 +22,9 @@ namespace {
 constexpr int kPollSliceMs = 100;
 // Rejections of one kind are reported on stderr at most once per this many seconds.
 constexpr double kReportInterval = 1.0;
+// Real-time: a wait for the next step's start shorter than this [s] is slept, not polled (the
+// bus waits in whole milliseconds).
+constexpr double kSleepBelow = 1e-3;
 
 double steady_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
@@ -46,7 +52,43 @@ ServerLoop::ServerLoop(const scene::Scene& scene, scene::BuiltScene built, Serve
     throw std::invalid_argument(scene_.source +
                                 ": the server needs muscles (muscles: builtin or a list)");
   if (options_.timeout_ms <= 0) throw std::invalid_argument("the timeout must be > 0 ms");
+  if (!(options_.silence_s > 0.0)) throw std::invalid_argument("the silence must be > 0 s");
+  if (options_.publish_every < 1)
+    throw std::invalid_argument("states must be published every 1 or more steps");
+  if (options_.on_silence == OnSilence::decay && options_.mode != Mode::realtime)
+    throw std::invalid_argument("decay on silence needs the real-time mode");
   for (const auto& m : built_.muscles->muscles()) muscle_names_.push_back(m.name);
+  const fem::Mesh& mesh = built_.solid->mesh();
+  switch (options_.nodes) {
+    case Nodes::all:
+      node_indices_.resize(static_cast<std::size_t>(mesh.num_nodes()));
+      std::iota(node_indices_.begin(), node_indices_.end(), 0);
+      break;
+    case Nodes::surface:
+      node_indices_ = fem::boundary_nodes(mesh);
+      break;
+    case Nodes::midsagittal: {
+      const auto it = mesh.node_sets.find("midsagittal");
+      if (it == mesh.node_sets.end() || it->second.empty())
+        throw std::invalid_argument(scene_.source +
+                                    ": the mesh has no \"midsagittal\" node set (the node subset "
+                                    "midsagittal needs one; the built-in tongue has it)");
+      node_indices_ = it->second;
+      break;
+    }
+    case Nodes::landmarks:
+      for (const std::string& name : model::landmark_names()) {
+        const auto it = mesh.node_sets.find(name);
+        if (it != mesh.node_sets.end() && !it->second.empty())
+          node_indices_.push_back(it->second.front());
+      }
+      if (node_indices_.empty())
+        throw std::invalid_argument(scene_.source +
+                                    ": the mesh has none of the landmark node sets (tip, blade, "
+                                    "palatal_dorsum, velar_dorsum, root, gg_insertion) the node "
+                                    "subset landmarks needs; the built-in tongue has them");
+      break;
+  }
   if (!options_.output.empty())
     log_ = logging::open_scene_run_file(options_.output, scene_, built_);
 }
@@ -72,7 +114,7 @@ ExitStatus ServerLoop::run() {
           text = "interrupted";
           break;
         case ExitStatus::silence:
-          text = "stopped: no activation for " + std::to_string(options_.timeout_ms) + " ms";
+          text = "stopped: " + silence_text();
           break;
         default:
           text = "failed: " + failure_;
@@ -95,6 +137,8 @@ ExitStatus ServerLoop::loop() {
   log_frame();
   publish_state("ok");
   double deadline = steady_seconds() + options_.timeout_ms * 1e-3;
+  anchor_clock();
+  const bool realtime = options_.mode == Mode::realtime;
   while (true) {
     if (stop_requested_ && stop_requested_()) {
       std::fprintf(stderr, "sim_server: interrupted at step %lld\n", static_cast<long long>(step_));
@@ -104,13 +148,17 @@ ExitStatus ServerLoop::loop() {
     if (shutdown_) return ExitStatus::ok;
     if (options_.max_steps && step_ >= *options_.max_steps) return ExitStatus::ok;
 
-    const bool free_running = options_.mode == Mode::fast && !paused_;
     int wait_ms = kPollSliceMs;
-    if (free_running) {
-      wait_ms = 0;
-    } else if (options_.mode == Mode::lockstep && !paused_) {
-      const double left_ms = (deadline - steady_seconds()) * 1e3;
-      wait_ms = std::clamp(static_cast<int>(left_ms) + 1, 0, kPollSliceMs);
+    if (!paused_) {
+      if (options_.mode == Mode::fast) {
+        wait_ms = 0;
+      } else if (realtime) {
+        const double left = step_start_time() - steady_seconds();
+        wait_ms = left > kSleepBelow ? std::min(static_cast<int>(left * 1e3), kPollSliceMs) : 0;
+      } else {
+        const double left_ms = (deadline - steady_seconds()) * 1e3;
+        wait_ms = std::clamp(static_cast<int>(left_ms) + 1, 0, kPollSliceMs);
+      }
     }
     const std::int64_t step_before = step_;
     const std::vector<IncomingMessage> messages = bus_.receive(wait_ms);
@@ -118,14 +166,32 @@ ExitStatus ServerLoop::loop() {
       handle(message);
       if (shutdown_ || !failure_.empty()) break;
     }
-    if (shutdown_ || !failure_.empty()) continue;
-
-    if (free_running && !paused_) {
-      if (advance(levels_)) continue;
+    if (shutdown_ || !failure_.empty() || paused_) {
+      if (options_.mode == Mode::lockstep) deadline = steady_seconds() + options_.timeout_ms * 1e-3;
+      continue;
     }
-    if (options_.mode == Mode::lockstep) {
+
+    if (options_.mode == Mode::fast) {
+      advance(levels_);
+    } else if (realtime) {
       const double now = steady_seconds();
-      if (step_ != step_before || paused_) {
+      if (!silent_ && now - last_activation_ > options_.silence_s) {
+        silent_ = true;
+        const char* what = options_.on_silence == OnSilence::stop    ? "stopping"
+                           : options_.on_silence == OnSilence::decay ? "activations set to 0"
+                                                                     : "holding the activation";
+        std::fprintf(stderr, "sim_server: %s at step %lld, %s\n", silence_text().c_str(),
+                     static_cast<long long>(step_), what);
+        if (options_.on_silence == OnSilence::stop) return ExitStatus::silence;
+        if (options_.on_silence == OnSilence::decay) levels_.setZero();
+      }
+      const double left = step_start_time() - now;
+      if (left > kSleepBelow) continue;
+      if (left > 0.0) std::this_thread::sleep_for(std::chrono::duration<double>(left));
+      advance(levels_);
+    } else {
+      const double now = steady_seconds();
+      if (step_ != step_before) {
         deadline = now + options_.timeout_ms * 1e-3;
       } else if (now >= deadline) {
         std::fprintf(stderr, "sim_server: no activation for step %lld within %d ms%s\n",
@@ -136,6 +202,30 @@ ExitStatus ServerLoop::loop() {
       }
     }
   }
+}
+
+void ServerLoop::anchor_clock() {
+  anchor_time_ = steady_seconds();
+  anchor_step_ = step_;
+  last_activation_ = anchor_time_;
+  silent_ = false;
+}
+
+double ServerLoop::step_start_time() const {
+  return anchor_time_ + static_cast<double>(step_ - anchor_step_) * scene_.analysis.dt;
+}
+
+bool ServerLoop::should_publish() const {
+  if (options_.mode == Mode::lockstep || step_ % options_.publish_every == 0) return true;
+  return options_.max_steps && step_ >= *options_.max_steps;
+}
+
+std::string ServerLoop::silence_text() const {
+  if (options_.mode == Mode::lockstep)
+    return "no activation for " + std::to_string(options_.timeout_ms) + " ms";
+  char text[64];
+  std::snprintf(text, sizeof text, "no activation for %g s", options_.silence_s);
+  return text;
 }
 
 bool ServerLoop::initialize() {
@@ -186,12 +276,31 @@ bool ServerLoop::advance(const fem::Vector& levels) {
         false);
     return false;
   }
+  if (options_.mode == Mode::realtime) {
+    const double late = steady_seconds() - (step_start_time() + scene_.analysis.dt);
+    if (late > 0.0) {
+      ++overruns_;
+      const double now = steady_seconds();
+      if (now - last_overrun_report_ >= kReportInterval) {
+        std::fprintf(stderr, "sim_server: overrun: step %lld finished %.3g ms late",
+                     static_cast<long long>(step_ + 1), late * 1e3);
+        if (unreported_overruns_ > 0)
+          std::fprintf(stderr, " (and %lld more not shown)",
+                       static_cast<long long>(unreported_overruns_));
+        std::fprintf(stderr, "; %lld overruns in all\n", static_cast<long long>(overruns_));
+        last_overrun_report_ = now;
+        unreported_overruns_ = 0;
+      } else {
+        ++unreported_overruns_;
+      }
+    }
+  }
   accepted_u_ = integrator_->displacement();
   accepted_v_ = integrator_->velocity();
   ++step_;
   time_ = integrator_->time();
   log_frame();
-  publish_state("ok");
+  if (should_publish()) publish_state("ok");
   return true;
 }
 
@@ -219,8 +328,14 @@ void ServerLoop::handle_activation(const IncomingMessage& message) {
   }
   const fem::Vector levels = Eigen::Map<const fem::Vector>(
       check.levels.data(), static_cast<Eigen::Index>(check.levels.size()));
-  if (options_.mode == Mode::fast) {
+  if (options_.mode != Mode::lockstep) {
     levels_ = levels;  // held from the next step on
+    last_activation_ = steady_seconds();
+    if (silent_) {
+      silent_ = false;
+      std::fprintf(stderr, "sim_server: activations again at step %lld\n",
+                   static_cast<long long>(step_));
+    }
     return;
   }
   if (msg.step <= step_) {
@@ -258,6 +373,7 @@ void ServerLoop::handle_command(const IncomingMessage& message) {
     paused_ = true;
     publish_state("paused");
   } else if (c == "resume") {
+    if (paused_ && options_.mode == Mode::realtime) anchor_clock();
     paused_ = false;
     if (pending_) {
       const fem::Vector levels = *pending_;
@@ -267,6 +383,8 @@ void ServerLoop::handle_command(const IncomingMessage& message) {
   } else if (c == "reset") {
     restart();
     rejected_ = 0;
+    overruns_ = 0;
+    anchor_clock();
     ++resets_;
     std::fprintf(stderr, "sim_server: reset to step 0\n");
     log_frame();
@@ -326,12 +444,12 @@ void ServerLoop::publish_state(const std::string& status, bool converged) {
   msg.utime = wall_utime();
   msg.step = step_;
   msg.time = time_;
-  const int n = built_.solid->mesh().num_nodes();
-  msg.num_nodes = n;
-  msg.node_indices.resize(n);
-  for (int i = 0; i < n; ++i) msg.node_indices[i] = i;
-  const fem::Vector positions = built_.solid->rest_positions() + accepted_u_;
-  msg.positions.assign(positions.data(), positions.data() + positions.size());
+  msg.num_nodes = static_cast<std::int32_t>(node_indices_.size());
+  msg.node_indices = node_indices_;
+  const fem::Vector& rest = built_.solid->rest_positions();
+  msg.positions.reserve(3 * node_indices_.size());
+  for (const int i : node_indices_)
+    for (int c = 0; c < 3; ++c) msg.positions.push_back(rest[3 * i + c] + accepted_u_[3 * i + c]);
   msg.num_positions = static_cast<std::int32_t>(msg.positions.size());
   msg.num_muscles = muscles.num_muscles();
   const fem::Vector lengths = muscles.muscle_lengths(accepted_u_);
@@ -346,7 +464,7 @@ void ServerLoop::publish_state(const std::string& status, bool converged) {
   msg.converged = converged;
   msg.status = status;
   msg.rejected_messages = rejected_;
-  msg.overruns = 0;
+  msg.overruns = overruns_;
   bus_.publish_state(msg);
 }
 

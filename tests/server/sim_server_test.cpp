@@ -9,6 +9,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <deque>
@@ -433,6 +434,173 @@ TEST_F(SimServer, SceneWithoutMusclesIsAClearError) {
       dir_);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("the server needs muscles"), std::string::npos) << r.err;
+}
+
+// Real-time mode paces the steps to the wall clock: step n + 1 starts no earlier than
+// start + n dt, so 41 steps of 2 ms span at least 40 dt between the states of steps 0 and 41
+// (both stamped by the server's clock); an activation tagged -1 is held.
+TEST_F(SimServer, RealTimeIsPacedToTheWallClockAndHoldsTheActivation) {
+  start(7740, {"--mode", "realtime", "--max-steps", "41"});
+  const auto s0 = controller_->wait_step(0);
+  ASSERT_TRUE(s0) << server_->stderr_text();
+  controller_->send_activation(-1, {"flexor"}, {0.6});
+  const auto held = controller_->wait_state(
+      [](const lcmt_tongue_state& s) { return s.activations == std::vector<double>{0.6}; });
+  ASSERT_TRUE(held) << server_->stderr_text();
+  const auto last = controller_->wait_step(41);
+  ASSERT_TRUE(last) << server_->stderr_text();
+  EXPECT_EQ(last->activations, (std::vector<double>{0.6}));
+  EXPECT_GE(last->utime - s0->utime, static_cast<std::int64_t>(40 * kDt * 1e6));
+  EXPECT_EQ(server_->wait_exit(kExitWaitMs), 0) << server_->stderr_text();
+  const RunFile f(dir_ / "run.h5");
+  EXPECT_EQ(f.doubles("/time").size(), 42u);
+  EXPECT_EQ(f.string_attribute("/", "status"), "completed");
+}
+
+// A dt no machine can keep up with: every late step is an overrun, counted in the state.
+TEST_F(SimServer, RealTimeCountsOverruns) {
+  std::string text = kScene;
+  text.replace(text.find("dt: 0.002}"), 10, "dt: 0.000001}");
+  write("scene.yaml", text);
+  url_ = bus_url(7741);
+  controller_ = std::make_unique<Controller>(url_);
+  server_ = std::make_unique<ServerProcess>(
+      std::vector<std::string>{(dir_ / "scene.yaml").string(), "--lcm-url", url_, "--mode",
+                               "realtime", "--max-steps", "20"},
+      dir_);
+  const auto s0 = controller_->wait_step(0);
+  ASSERT_TRUE(s0) << server_->stderr_text();
+  EXPECT_EQ(s0->overruns, 0);
+  const auto last = controller_->wait_step(20);
+  ASSERT_TRUE(last) << server_->stderr_text();
+  EXPECT_GT(last->overruns, 0);
+  EXPECT_LE(last->overruns, 20);
+  EXPECT_EQ(server_->wait_exit(kExitWaitMs), 0) << server_->stderr_text();
+  EXPECT_NE(server_->stderr_text().find("overrun"), std::string::npos) << server_->stderr_text();
+}
+
+std::size_t count_of(const std::string& text, const std::string& part) {
+  std::size_t n = 0;
+  for (auto at = text.find(part); at != std::string::npos; at = text.find(part, at + 1)) ++n;
+  return n;
+}
+
+// --on-silence decay: after --silence-s without a valid activation all levels go to 0, said once
+// on stderr however long the silence lasts.
+TEST_F(SimServer, RealTimeDecaysToZeroAfterSilence) {
+  start(7742, {"--mode", "realtime", "--silence-s", "0.1", "--on-silence", "decay"});
+  ASSERT_TRUE(controller_->wait_step(0)) << server_->stderr_text();
+  const auto sent = std::chrono::steady_clock::now();
+  controller_->send_activation(-1, {"flexor"}, {0.8});
+  const auto held = controller_->wait_state(
+      [](const lcmt_tongue_state& s) { return s.activations == std::vector<double>{0.8}; });
+  ASSERT_TRUE(held) << server_->stderr_text();
+  const auto decayed = controller_->wait_state(
+      [](const lcmt_tongue_state& s) { return s.activations == std::vector<double>{0.0}; });
+  ASSERT_TRUE(decayed) << server_->stderr_text();
+  EXPECT_GE(std::chrono::steady_clock::now() - sent, std::chrono::milliseconds(100));
+  EXPECT_GT(decayed->step, held->step);
+  // Still silent 100 steps (0.2 s) later: still 0, reported once.
+  const auto later = controller_->wait_step(decayed->step + 100);
+  ASSERT_TRUE(later) << server_->stderr_text();
+  EXPECT_EQ(later->activations, (std::vector<double>{0.0}));
+  EXPECT_EQ(shut_down(), 0) << server_->stderr_text();
+  EXPECT_EQ(count_of(server_->stderr_text(), "no activation for 0.1 s"), 1u)
+      << server_->stderr_text();
+  EXPECT_NE(server_->stderr_text().find("activations set to 0"), std::string::npos)
+      << server_->stderr_text();
+}
+
+TEST_F(SimServer, RealTimeSilenceStopsTheServerWhenAskedTo) {
+  start(7743, {"--mode", "realtime", "--silence-s", "0.1", "--on-silence", "stop"});
+  ASSERT_TRUE(controller_->wait_step(0)) << server_->stderr_text();
+  EXPECT_EQ(server_->wait_exit(kExitWaitMs), 3) << server_->stderr_text();
+  const RunFile f(dir_ / "run.h5");
+  EXPECT_EQ(f.string_attribute("/", "status"), "stopped: no activation for 0.1 s");
+}
+
+// A 40 x 20 x 20 mm block, 4 x 2 x 2 elements: 45 nodes, of which the 3 on the inner axis are not
+// on the surface.
+TEST_F(SimServer, SurfaceNodesOnly) {
+  std::string text = kScene;
+  text.replace(text.find("size: [0.04, 0.01, 0.01], divisions: [4, 1, 1]"), 46,
+               "size: [0.04, 0.02, 0.02], divisions: [4, 2, 2]");
+  write("scene.yaml", text);
+  url_ = bus_url(7744);
+  controller_ = std::make_unique<Controller>(url_);
+  server_ = std::make_unique<ServerProcess>(
+      std::vector<std::string>{(dir_ / "scene.yaml").string(), "--lcm-url", url_, "--output",
+                               (dir_ / "run.h5").string(), "--nodes", "surface"},
+      dir_);
+  const auto model = controller_->wait_model();
+  ASSERT_TRUE(model) << server_->stderr_text();
+  ASSERT_EQ(model->num_nodes, 45);
+  // Surface nodes, found from the rest positions: some coordinate at the box's min or max.
+  const std::vector<double>& rest = model->rest_positions;
+  std::vector<std::int32_t> surface;
+  for (int i = 0; i < model->num_nodes; ++i) {
+    bool on = false;
+    for (int c = 0; c < 3; ++c) {
+      double lo = rest[c], hi = rest[c];
+      for (int j = 0; j < model->num_nodes; ++j) {
+        lo = std::min(lo, rest[3 * j + c]);
+        hi = std::max(hi, rest[3 * j + c]);
+      }
+      on = on || std::abs(rest[3 * i + c] - lo) < 1e-12 || std::abs(rest[3 * i + c] - hi) < 1e-12;
+    }
+    if (on) surface.push_back(i);
+  }
+  ASSERT_EQ(surface.size(), 42u);
+  const auto s0 = controller_->wait_step(0);
+  ASSERT_TRUE(s0) << server_->stderr_text();
+  EXPECT_EQ(s0->num_nodes, 42);
+  EXPECT_EQ(s0->node_indices, surface);
+  ASSERT_EQ(s0->num_positions, 3 * 42);
+  ASSERT_EQ(s0->positions.size(), 3u * 42u);
+  for (std::size_t k = 0; k < surface.size(); ++k)
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(s0->positions[3 * k + c], rest[3 * surface[k] + c]);  // not settled: at rest
+  const lcmt_tongue_state s1 = step_to(1, 0.5);
+  EXPECT_EQ(s1.node_indices, surface);
+  EXPECT_EQ(s1.positions.size(), 3u * 42u);
+  EXPECT_EQ(shut_down(), 0) << server_->stderr_text();
+  const RunFile f(dir_ / "run.h5");
+  EXPECT_EQ(f.doubles("/positions").size(), 2u * 45u * 3u);  // the run file keeps all nodes
+}
+
+TEST_F(SimServer, NodeSetsTheMeshLacksAreAClearError) {
+  const std::string scene = write("scene.yaml", kScene);
+  for (const std::string subset : {"midsagittal", "landmarks"}) {
+    const testing::RunResult r = testing::run_command(
+        SIM_SERVER_PATH, "'" + scene + "' --nodes " + subset + " --lcm-url '" + bus_url(7745) + "'",
+        dir_);
+    EXPECT_EQ(r.exit_code, 1) << subset;
+    EXPECT_NE(r.err.find("the mesh has no"), std::string::npos) << r.err;
+  }
+}
+
+TEST_F(SimServer, PublishEveryKStepsInFastMode) {
+  start(7746, {"--mode", "fast", "--max-steps", "23", "--publish-every", "5"});
+  std::vector<std::int64_t> steps;
+  ASSERT_TRUE(controller_->wait_state([&steps](const lcmt_tongue_state& s) {
+    steps.push_back(s.step);
+    return s.step >= 23;
+  })) << server_->stderr_text();
+  EXPECT_EQ(steps, (std::vector<std::int64_t>{0, 5, 10, 15, 20, 23}));  // and the last step
+  EXPECT_EQ(server_->wait_exit(kExitWaitMs), 0) << server_->stderr_text();
+  const RunFile f(dir_ / "run.h5");
+  EXPECT_EQ(f.doubles("/time").size(), 24u);  // every step logged
+}
+
+TEST_F(SimServer, PublishEveryIsNotForLockStep) {
+  const testing::RunResult r = testing::run_command(
+      SIM_SERVER_PATH,
+      "'" + write("scene.yaml", kScene) + "' --publish-every 2 --lcm-url '" + bus_url(7747) + "'",
+      dir_);
+  EXPECT_EQ(r.exit_code, 1);
+  EXPECT_NE(r.err.find("--publish-every applies to --mode fast and realtime only"),
+            std::string::npos)
+      << r.err;
 }
 
 }  // namespace
