@@ -5,12 +5,27 @@
 #include <stdexcept>
 
 namespace tongue::server {
+namespace {
+
+// Messages LCM may hold per subscription between two reads of the loop. LCM's default (30) drops
+// every message beyond it, so a burst of a few dozen bad activations could also drop the valid
+// activation or the shutdown that follows it; the ring buffer (recv_buf_size in the URL) and the
+// socket's receive buffer still bound what is held.
+constexpr int kQueueCapacity = 100000;
+
+}  // namespace
 
 LcmServerBus::LcmServerBus(const std::string& url, const bus::Channels& channels)
     : lcm_(url), channels_(channels) {
   if (!lcm_.good()) throw std::runtime_error("cannot open the LCM bus at '" + url + "'");
-  lcm_.subscribeFunction(channels_.activation, &LcmServerBus::on_message, &activation_);
-  lcm_.subscribeFunction(channels_.command, &LcmServerBus::on_message, &command_);
+  for (auto* subscriber : {&activation_, &command_}) {
+    const std::string& channel =
+        subscriber == &activation_ ? channels_.activation : channels_.command;
+    lcm::Subscription* subscription =
+        lcm_.subscribeFunction(channel, &LcmServerBus::on_message, subscriber);
+    if (subscription == nullptr || subscription->setQueueCapacity(kQueueCapacity) != 0)
+      throw std::runtime_error("cannot subscribe to " + channel + " on '" + url + "'");
+  }
 }
 
 void LcmServerBus::on_message(const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/,
