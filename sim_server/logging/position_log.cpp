@@ -291,6 +291,32 @@ PositionLog::PositionLog(const std::string& path, const fem::Mesh& mesh,
     w.strings(group.get(), "names", names, "muscle names, in the order of every muscle dataset");
     w.fixed(group.get(), "max_force", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {m}, max_force.data(), "N",
             "tension at full activation");
+    std::vector<int> fibre_muscle, offsets{0}, nodes;
+    std::vector<double> weights, origins;
+    for (std::size_t i = 0; i < muscles.size(); ++i) {
+      for (const FibreDescription& f : muscles[i].fibres) {
+        fibre_muscle.push_back(static_cast<int>(i));
+        weights.push_back(f.weight);
+        origins.insert(origins.end(), f.origin.begin(), f.origin.end());
+        nodes.insert(nodes.end(), f.nodes.begin(), f.nodes.end());
+        offsets.push_back(static_cast<int>(nodes.size()));
+      }
+    }
+    if (!fibre_muscle.empty()) {
+      const auto f = static_cast<hsize_t>(fibre_muscle.size());
+      const Id fibres = w.group(group.get(), "fibres");
+      w.fixed(fibres.get(), "muscle", H5T_STD_I32LE, H5T_NATIVE_INT, {f}, fibre_muscle.data(), "1",
+              "index of the fibre's muscle in /muscles/names");
+      w.fixed(fibres.get(), "weight", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {f}, weights.data(), "1",
+              "share of the muscle's tension the fibre carries");
+      w.fixed(fibres.get(), "origin", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {f, 3}, origins.data(),
+              "m", "fixed bony attachment before the first node; NaN when the fibre has none");
+      w.fixed(fibres.get(), "node_offsets", H5T_STD_I32LE, H5T_NATIVE_INT, {f + 1}, offsets.data(),
+              "1", "fibre k's nodes are nodes[node_offsets[k] .. node_offsets[k+1])");
+      w.fixed(fibres.get(), "nodes", H5T_STD_I32LE, H5T_NATIVE_INT,
+              {static_cast<hsize_t>(nodes.size())}, nodes.data(), "1",
+              "0-based node indices of every fibre, in order, fibre after fibre");
+    }
     // Like the positions: about 64 KiB per chunk, at least one frame, at most 1024.
     const hsize_t muscle_chunk = std::clamp<hsize_t>(65536 / (m * sizeof(double)), 1, 1024);
     h_->activations = w.series(file, "activations", H5T_IEEE_F64LE, {m}, muscle_chunk, z, "1",

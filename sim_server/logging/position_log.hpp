@@ -19,10 +19,17 @@
 //   /activations        [T x M]      double  1, activation level of each muscle
 //   /muscles/length     [T x M]      double  m, weighted mean fibre length
 //   /muscles/velocity   [T x M]      double  m/s, its rate of change (> 0: lengthening)
+//   /muscles/fibres/muscle        [F]      int32   index of the fibre's muscle
+//   /muscles/fibres/weight        [F]      double  1, share of the muscle's tension
+//   /muscles/fibres/origin        [F x 3]  double  m, fixed bony attachment, NaN when none
+//   /muscles/fibres/node_offsets  [F + 1]  int32   fibre f is nodes[node_offsets[f] ..
+//   /muscles/fibres/nodes         [sum]    int32   node_offsets[f + 1]), 0-based, in order
 //   root attributes: format_version (int), length_unit = "m", time_unit, scene_text (the YAML),
 //                    plus any set with set_attribute (e.g. "status").
 // Every dataset has a "units" and a "description" attribute. The time-indexed datasets are
 // chunked along time and deflate-compressed, extended on each append.
+#include <array>
+#include <limits>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -34,9 +41,18 @@
 namespace tongue::logging {
 
 // A muscle as the run file describes it.
+struct FibreDescription {
+  std::vector<int> nodes;  // 0-based node indices, in order along the fibre
+  std::array<double, 3> origin{std::numeric_limits<double>::quiet_NaN(),
+                               std::numeric_limits<double>::quiet_NaN(),
+                               std::numeric_limits<double>::quiet_NaN()};  // m; NaN: none
+  double weight = 1.0;  // share of the muscle's tension
+};
+
 struct MuscleDescription {
   std::string name;
   double max_force = 0.0;  // N
+  std::vector<FibreDescription> fibres;
 };
 
 // Per-muscle values of one frame, each of size M (in the order of the descriptions).

@@ -1,8 +1,24 @@
 #include "logging/scene_run_file.hpp"
 
+#include <ctime>
+#include <string>
 #include <vector>
 
 namespace tongue::logging {
+
+namespace {
+
+// The wall-clock time as ISO 8601 UTC, e.g. 2026-11-22T17:40:00Z.
+std::string utc_now_iso8601() {
+  const std::time_t now = std::time(nullptr);
+  std::tm utc{};
+  gmtime_r(&now, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &utc);
+  return text;
+}
+
+}  // namespace
 
 std::unique_ptr<PositionLog> open_scene_run_file(const std::string& path, const scene::Scene& scene,
                                                  const scene::BuiltScene& built) {
@@ -12,8 +28,17 @@ std::unique_ptr<PositionLog> open_scene_run_file(const std::string& path, const 
   // falsely about overlapping memcpy for a one-character literal.)
   if (!dynamic) options.time_unit.assign(1, '1');
   std::vector<MuscleDescription> muscles;
-  if (built.muscles)
-    for (const auto& m : built.muscles->muscles()) muscles.push_back({m.name, m.max_force});
+  if (built.muscles) {
+    for (const auto& m : built.muscles->muscles()) {
+      MuscleDescription d{m.name, m.max_force, {}};
+      for (const auto& f : m.fibres) {
+        FibreDescription fd{f.nodes, {}, f.weight};
+        if (f.origin) fd.origin = {f.origin->x(), f.origin->y(), f.origin->z()};
+        d.fibres.push_back(std::move(fd));
+      }
+      muscles.push_back(std::move(d));
+    }
+  }
   auto log = std::make_unique<PositionLog>(path, built.solid->mesh(), scene.text, options, muscles);
   log->set_attribute("analysis", dynamic ? "dynamic" : "static");
   // What frame 0 shows, so that pictures can compare the end with rest under gravity.
@@ -22,6 +47,8 @@ std::unique_ptr<PositionLog> open_scene_run_file(const std::string& path, const 
                          ? "settled: static equilibrium under the loads, muscles off"
                          : "reference: the rest positions");
   log->set_attribute("status", "running");
+  log->set_attribute("project_version", TONGUE_SIM_VERSION);
+  log->set_attribute("start_time", utc_now_iso8601());
   return log;
 }
 

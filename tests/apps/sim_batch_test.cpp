@@ -270,6 +270,19 @@ TEST_F(SimBatch, TongueSceneLogsMusclesSetsAndLandmarks) {
   }
   EXPECT_LT(length[3 * muscles + left], length[left]);  // SG shortens
 
+  // The fibres of every muscle, and where the run came from.
+  const std::vector<int> fibre_muscle = f.ints("/muscles/fibres/muscle");
+  const std::vector<int> offsets = f.ints("/muscles/fibres/node_offsets");
+  const std::vector<int> fibre_nodes = f.ints("/muscles/fibres/nodes");
+  ASSERT_FALSE(fibre_muscle.empty());
+  ASSERT_EQ(offsets.size(), fibre_muscle.size() + 1);
+  EXPECT_EQ(offsets.front(), 0);
+  EXPECT_EQ(static_cast<std::size_t>(offsets.back()), fibre_nodes.size());
+  for (int m : fibre_muscle) EXPECT_LT(static_cast<hsize_t>(m), muscles);
+  EXPECT_EQ(f.shape("/muscles/fibres/origin"), (std::vector<hsize_t>{fibre_muscle.size(), 3}));
+  EXPECT_EQ(f.string_attribute("/", "project_version"), "0.1.0");
+  EXPECT_EQ(f.string_attribute("/", "start_time").size(), 20u);  // 2026-11-22T17:40:00Z
+
   // Sets for pictures: the muscle's elements and the landmarks.
   const std::vector<int> sg_elements = f.ints("/mesh/element_sets/SG_left");
   EXPECT_FALSE(sg_elements.empty());
