@@ -1,4 +1,5 @@
 #include "scene/scene_builder.hpp"
+#include "scene/scene_error_expectations.hpp"
 
 #include <gtest/gtest.h>
 
@@ -35,18 +36,7 @@ BuiltScene build(const std::string& extra) {
 
 void expect_build_error(const std::string& extra, const std::string& key_path,
                         const std::string& also = "") {
-  const Scene scene = parse_scene(std::string(kBox) + extra, "", "test.yaml");
-  try {
-    build_scene(scene);
-    FAIL() << "no SceneError for " << key_path;
-  } catch (const SceneError& e) {
-    const std::string what = e.what();
-    EXPECT_EQ(e.key_path(), key_path) << what;
-    EXPECT_NE(what.find("test.yaml: " + key_path + ":"), std::string::npos) << what;
-    if (!also.empty()) {
-      EXPECT_NE(what.find(also), std::string::npos) << what;
-    }
-  }
+  scene_test::expect_build_error(std::string(kBox) + extra, key_path, also);
 }
 
 fem::Vec3 total(const fem::Vector& f) {

@@ -10,6 +10,7 @@
 
 #include "scene/activation_schedule.hpp"
 #include "scene/scene_builder.hpp"
+#include "scene/scene_error_expectations.hpp"
 #include "scene/scene_reader.hpp"
 #include "tongue/default_tongue.hpp"
 
@@ -42,39 +43,14 @@ muscles:
   - {name: flexor_deep, max_force: 30, elements: [3], fibres: [{nodes: [13, 14]}]}
 )";
 
-Scene parse(const std::string& text) {
-  return parse_scene(text, "", "test.yaml");
-}
-
+using scene_test::expect_build_error;
 void expect_error(const std::string& text, const std::string& key_path,
                   const std::string& also = "") {
-  try {
-    parse(text);
-    FAIL() << "no SceneError for " << key_path;
-  } catch (const SceneError& e) {
-    const std::string what = e.what();
-    EXPECT_EQ(e.key_path(), key_path) << what;
-    EXPECT_NE(what.find("test.yaml: " + key_path + ":"), std::string::npos) << what;
-    if (!also.empty()) {
-      EXPECT_NE(what.find(also), std::string::npos) << what;
-    }
-  }
+  scene_test::expect_parse_error(text, key_path, also);
 }
 
-void expect_build_error(const std::string& text, const std::string& key_path,
-                        const std::string& also = "") {
-  const Scene scene = parse(text);
-  try {
-    build_scene(scene);
-    FAIL() << "no SceneError for " << key_path;
-  } catch (const SceneError& e) {
-    const std::string what = e.what();
-    EXPECT_EQ(e.key_path(), key_path) << what;
-    EXPECT_NE(what.find("test.yaml: " + key_path + ":"), std::string::npos) << what;
-    if (!also.empty()) {
-      EXPECT_NE(what.find(also), std::string::npos) << what;
-    }
-  }
+Scene parse(const std::string& text) {
+  return parse_scene(text, "", "test.yaml");
 }
 
 int muscle_index(const BuiltScene& built, const std::string& name) {

@@ -1,4 +1,5 @@
 #include "scene/scene_reader.hpp"
+#include "scene/scene_error_expectations.hpp"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,10 @@ namespace tongue::scene {
 namespace {
 
 namespace fs = std::filesystem;
+void expect_error(const std::string& text, const std::string& key_path,
+                  const std::string& also = "") {
+  scene_test::expect_parse_error(text, key_path, also);
+}
 
 // The smallest runnable scene; the error tests each break one thing in a copy of it.
 const char* const kMinimal = R"(
@@ -22,23 +27,6 @@ material:
 analysis:
   type: static
 )";
-
-// Parses text and expects a SceneError whose message names the key path (and the file).
-void expect_error(const std::string& text, const std::string& key_path,
-                  const std::string& also = "") {
-  try {
-    parse_scene(text, "", "test.yaml");
-    FAIL() << "no SceneError for " << key_path;
-  } catch (const SceneError& e) {
-    const std::string what = e.what();
-    EXPECT_NE(what.find("test.yaml: "), std::string::npos) << what;
-    EXPECT_NE(what.find(key_path + ":"), std::string::npos) << what;
-    EXPECT_EQ(e.key_path(), key_path) << what;
-    if (!also.empty()) {
-      EXPECT_NE(what.find(also), std::string::npos) << what;
-    }
-  }
-}
 
 // A fresh temporary directory per test, for mesh files and scene files.
 class TempDir : public testing::TempDirTest {};
