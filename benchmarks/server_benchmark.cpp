@@ -20,11 +20,6 @@
 //
 // Usage: server_benchmark [--box-steps N] [--tongue-steps N]   (defaults 200 and 50)
 // Uses ports 7790-7792. Build in Release; it takes well under 2 minutes.
-#include <fcntl.h>
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <atomic>
@@ -32,10 +27,10 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <deque>
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <memory>
 #include <mutex>
 #include <numeric>
 #include <optional>
@@ -48,36 +43,18 @@
 
 #include "bus/channels.hpp"
 #include "bus/messages.hpp"
+#include "support/sim_server_driver.hpp"
 
 #ifndef SIM_SERVER_PATH
 #error "SIM_SERVER_PATH must name the sim_server executable"
 #endif
-
-extern char** environ;
 
 namespace {
 
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 using tongue_lcm::lcmt_tongue_activation;
-using tongue_lcm::lcmt_tongue_model;
 using tongue_lcm::lcmt_tongue_state;
-
-// The box of the server tests: 40 x 10 x 10 mm, 4 x 1 x 1 elements, one muscle, dt 2 ms.
-const char* const kBoxScene = R"(
-mesh:
-  box: {size: [0.04, 0.01, 0.01], divisions: [4, 1, 1]}
-material:
-  type: mooney_rivlin5
-  density: 1000
-constraints:
-  - {set: x_min, components: [x, y, z]}
-gravity: [0, -9.81, 0]
-muscles:
-  - {name: flexor, max_force: 0.01, elements: [2, 3], fibres: [{nodes: [2, 3, 4]}]}
-damping: {beta: 0.028}
-analysis: {type: dynamic, duration: 0.02, dt: 0.002}
-)";
 
 // scenes/tongue_sg_3n.yaml without its activation schedule and output (the benchmark drives it).
 const char* const kTongueScene = R"(
@@ -101,119 +78,25 @@ analysis:
   dt: 0.004
 )";
 
-std::string bus_url(int port) {
-  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
-}
+using tongue::testing::bus_url;
+using tongue::testing::ChildProcess;
+using tongue::testing::kBoxScene;
+using tongue::testing::ServerController;
+
+constexpr int kModelWaitMs = 30000;  // longest wait for the model (the tongue's takes a while)
+constexpr int kStepWaitMs = 20000;   // longest wait for one state
 
 double seconds_since(Clock::time_point t0) {
   return std::chrono::duration<double>(Clock::now() - t0).count();
 }
 
-// sim_server as a child process (stdout and stderr to files in dir), SIGKILLed if still running.
-class ServerProcess {
- public:
-  ServerProcess(std::vector<std::string> args, const fs::path& dir) {
-    const std::string out = (dir / "server_stdout.txt").string();
-    const std::string err = (dir / "server_stderr.txt").string();
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    args.insert(args.begin(), SIM_SERVER_PATH);
-    std::vector<char*> argv;
-    for (std::string& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    if (posix_spawn(&pid_, SIM_SERVER_PATH, &actions, nullptr, argv.data(), environ) != 0)
-      throw std::runtime_error("cannot start " + std::string(SIM_SERVER_PATH));
-    posix_spawn_file_actions_destroy(&actions);
-  }
-  ~ServerProcess() {
-    if (pid_ > 0) {
-      kill(pid_, SIGKILL);
-      waitpid(pid_, nullptr, 0);
-    }
-  }
-  ServerProcess(const ServerProcess&) = delete;
-  ServerProcess& operator=(const ServerProcess&) = delete;
-
-  // Exit status, or -1 when it has not exited within timeout_ms.
-  int wait_exit(int timeout_ms) {
-    const auto end = Clock::now() + std::chrono::milliseconds(timeout_ms);
-    while (pid_ > 0 && Clock::now() < end) {
-      int status = 0;
-      if (waitpid(pid_, &status, WNOHANG) == pid_) {
-        pid_ = -1;
-        return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    return -1;
-  }
-
- private:
-  pid_t pid_ = -1;
-};
-
-// The controller's side of the bus (one thread): subscribed to states and the model.
-class Controller {
- public:
-  explicit Controller(const std::string& url) : lcm_(url) {
-    if (!lcm_.good()) throw std::runtime_error("cannot open the LCM bus at " + url);
-    lcm_.subscribe(channels_.state, &Controller::on_state, this);
-    lcm_.subscribe(channels_.model, &Controller::on_model, this);
-  }
-  std::optional<lcmt_tongue_state> wait_step(std::int64_t step, int timeout_ms = 20000) {
-    const auto end = Clock::now() + std::chrono::milliseconds(timeout_ms);
-    while (true) {
-      while (!states_.empty()) {
-        lcmt_tongue_state s = std::move(states_.front());
-        states_.pop_front();
-        if (s.step == step) return s;
-      }
-      const auto left =
-          std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()).count();
-      if (left <= 0) return std::nullopt;
-      lcm_.handleTimeout(static_cast<int>(left));
-    }
-  }
-  std::optional<lcmt_tongue_model> wait_model(int timeout_ms = 30000) {
-    const auto end = Clock::now() + std::chrono::milliseconds(timeout_ms);
-    while (!model_) {
-      const auto left =
-          std::chrono::duration_cast<std::chrono::milliseconds>(end - Clock::now()).count();
-      if (left <= 0) return std::nullopt;
-      lcm_.handleTimeout(static_cast<int>(left));
-    }
-    return model_;
-  }
-  void send_activation(std::int64_t step, const std::string& name, double level) {
-    lcmt_tongue_activation msg;
-    msg.utime = 0;
-    msg.step = step;
-    msg.num_muscles = 1;
-    msg.names = {name};
-    msg.levels = {level};
-    lcm_.publish(channels_.activation, &msg);
-  }
-  void send_command(const std::string& command) {
-    tongue_lcm::lcmt_tongue_command msg;
-    msg.utime = 0;
-    msg.command = command;
-    lcm_.publish(channels_.command, &msg);
-  }
-
- private:
-  void on_state(const lcm::ReceiveBuffer*, const std::string&, const lcmt_tongue_state* s) {
-    states_.push_back(*s);
-  }
-  void on_model(const lcm::ReceiveBuffer*, const std::string&, const lcmt_tongue_model* m) {
-    model_ = *m;
-  }
-  lcm::LCM lcm_;
-  tongue::bus::Channels channels_;
-  std::deque<lcmt_tongue_state> states_;
-  std::optional<lcmt_tongue_model> model_;
-};
+// sim_server started with args (stdout and stderr to files in dir); throws when it cannot start.
+std::unique_ptr<ChildProcess> start_server(const std::vector<std::string>& args,
+                                           const fs::path& dir) {
+  auto server = std::make_unique<ChildProcess>(SIM_SERVER_PATH, args, dir);
+  if (!server->started()) throw std::runtime_error("cannot start " + std::string(SIM_SERVER_PATH));
+  return server;
+}
 
 double mean(const std::vector<double>& v) {
   return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
@@ -244,18 +127,20 @@ LockStepFigures lock_step(const std::string& name, const char* scene, int port, 
   std::ofstream(scene_file) << scene;
   const fs::path run_file = dir / (name + ".h5");
   const std::string url = bus_url(port);
-  Controller c(url);
-  ServerProcess server({scene_file.string(), "--lcm-url", url, "--output", run_file.string()}, dir);
-  const auto model = c.wait_model();
+  ServerController c(url);
+  if (!c.good()) throw std::runtime_error("cannot open the LCM bus at " + url);
+  const auto server =
+      start_server({scene_file.string(), "--lcm-url", url, "--output", run_file.string()}, dir);
+  const auto model = c.wait_model(kModelWaitMs);
   if (!model || model->muscle_names.empty())
     throw std::runtime_error(name + ": no model from the server (see " + dir.string() + ")");
   f.dt = model->dt;
-  if (!c.wait_step(0)) throw std::runtime_error(name + ": no state 0");
+  if (!c.wait_step(0, kStepWaitMs)) throw std::runtime_error(name + ": no state 0");
   const std::string muscle = model->muscle_names.front();
   for (int k = 1; k <= steps; ++k) {
     const auto t0 = Clock::now();
-    c.send_activation(k, muscle, 0.1 + 0.2 * k / steps);
-    const auto s = c.wait_step(k);
+    c.send_activation(k, {muscle}, {0.1 + 0.2 * k / steps});
+    const auto s = c.wait_step(k, kStepWaitMs);
     const double rtt = seconds_since(t0) * 1e6;
     if (!s) throw std::runtime_error(name + ": no state for step " + std::to_string(k));
     f.rtt_us.push_back(rtt);
@@ -263,7 +148,7 @@ LockStepFigures lock_step(const std::string& name, const char* scene, int port, 
     f.overhead_us.push_back(rtt - s->step_wall_time * 1e6);
   }
   c.send_command("shutdown");
-  if (server.wait_exit(10000) != 0) throw std::runtime_error(name + ": server did not exit 0");
+  if (server->wait_exit(10000) != 0) throw std::runtime_error(name + ": server did not exit 0");
   f.run_file_bytes = fs::file_size(run_file);
   return f;
 }
@@ -315,7 +200,7 @@ std::pair<double, std::vector<RateFigures>> fast_mode_rates(int port, const fs::
   StateWatcher watch(url);
   // States every 10 steps: the watcher must not be the bottleneck. No run file: logging is not
   // what is measured here.
-  ServerProcess server(
+  const auto server = start_server(
       {scene_file.string(), "--lcm-url", url, "--mode", "fast", "--publish-every", "10"}, dir);
   lcm::LCM out(url);
   const std::string channel = tongue::bus::Channels().activation;
@@ -378,7 +263,7 @@ std::pair<double, std::vector<RateFigures>> fast_mode_rates(int port, const fs::
   shutdown.utime = 0;
   shutdown.command = "shutdown";
   out.publish(tongue::bus::Channels().command, &shutdown);
-  server.wait_exit(5000);
+  server->wait_exit(5000);
   return {idle, figures};
 }
 

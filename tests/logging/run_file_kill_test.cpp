@@ -2,18 +2,16 @@
 // every frame up to the last flush. PositionLog flushes on the first append at least
 // flush_interval (1 s) after the previous flush, so a SIGKILL loses at most the frames of about
 // the last second of wall time (plus one step).
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -24,13 +22,12 @@
 #include "bus/messages.hpp"
 #include "support/run_command.hpp"
 #include "support/run_file.hpp"
+#include "support/sim_server_driver.hpp"
 #include "support/temp_dir_test.hpp"
 
 #ifndef SIM_SERVER_PATH
 #error "SIM_SERVER_PATH must name the sim_server executable"
 #endif
-
-extern char** environ;
 
 namespace tongue::logging {
 namespace {
@@ -54,7 +51,8 @@ damping: {beta: 0.028}
 analysis: {type: dynamic, duration: 0.02, dt: 0.002}
 )";
 constexpr double kDt = 0.002;
-constexpr int kPort = 7753;  // one port per test (tests/server uses 77xx below 7750)
+constexpr int kExitWaitMs = 5000;  // longest wait for the killed server to be reaped
+constexpr int kPort = 7753;        // one port per test (tests/server uses 77xx below 7750)
 
 class StateListener {
  public:
@@ -77,40 +75,26 @@ class StateListener {
 class RunFileKill : public testing::TempDirTest {};
 
 TEST_F(RunFileKill, SigkillLeavesAReadableFileMissingAtMostAboutOneSecond) {
-  const std::string url = "udpm://239.255.76.67:" + std::to_string(kPort) + "?ttl=0";
+  const std::string url = testing::bus_url(kPort);
   StateListener listener(url);
   ASSERT_TRUE(listener.good());
   const std::string scene = write("scene.yaml", kScene);
   const fs::path h5 = dir_ / "run.h5";
-  const std::string err = (dir_ / "server_stderr.txt").string();
-  std::vector<std::string> all{SIM_SERVER_PATH, scene, "--mode",   "fast",
-                               "--lcm-url",     url,   "--output", h5.string()};
-  std::vector<char*> argv;
-  for (std::string& a : all) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t actions;
-  posix_spawn_file_actions_init(&actions);
-  posix_spawn_file_actions_addopen(&actions, 1, "/dev/null", O_WRONLY, 0);
-  posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-  pid_t pid = -1;
-  ASSERT_EQ(posix_spawn(&pid, SIM_SERVER_PATH, &actions, nullptr, argv.data(), environ), 0);
-  posix_spawn_file_actions_destroy(&actions);
+  testing::ChildProcess server(
+      SIM_SERVER_PATH, {scene, "--mode", "fast", "--lcm-url", url, "--output", h5.string()}, dir_);
+  ASSERT_TRUE(server.started());
 
   // Let it run about 2 s from its first state, then kill -9.
   const auto deadline = Clock::now() + std::chrono::seconds(10);
   while (listener.received.empty() && Clock::now() < deadline) listener.handle(50);
-  if (listener.received.empty()) {
-    kill(pid, SIGKILL);
-    waitpid(pid, nullptr, 0);
-    FAIL() << "no state from the server\n" << testing::read_text(err);
-  }
+  if (listener.received.empty()) FAIL() << "no state from the server\n" << server.stderr_text();
   const auto kill_at = listener.received.front().first + std::chrono::milliseconds(2000);
   while (Clock::now() < kill_at) listener.handle(10);
-  kill(pid, SIGKILL);
+  server.signal(SIGKILL);
   const auto killed = Clock::now();
-  int status = 0;
-  ASSERT_EQ(waitpid(pid, &status, 0), pid);
-  ASSERT_TRUE(WIFSIGNALED(status) && WTERMSIG(status) == SIGKILL) << testing::read_text(err);
+  const std::optional<int> status = server.wait_status(kExitWaitMs);
+  ASSERT_TRUE(status);
+  ASSERT_TRUE(WIFSIGNALED(*status) && WTERMSIG(*status) == SIGKILL) << server.stderr_text();
 
   // The last step whose state arrived before (kill - 1 s flush interval - 0.3 s slack): its frame
   // was appended before the last flush.

@@ -4,19 +4,13 @@
 // server keeps running, counts the message in rejected_messages, leaves the state (step,
 // positions, activations) untouched (seen through the state a "pause" publishes), and still
 // advances on the next valid activation.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 
-#include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 #include <fstream>
 
 #include <chrono>
 #include <cstdint>
 #include <cstdio>
-#include <deque>
 #include <filesystem>
 #include <functional>
 #include <limits>
@@ -26,18 +20,15 @@
 #include <thread>
 #include <vector>
 
-#include <lcm/lcm-cpp.hpp>
-
 #include "bus/channels.hpp"
 #include "bus/messages.hpp"
 #include "support/run_command.hpp"
+#include "support/sim_server_driver.hpp"
 #include "support/temp_dir_test.hpp"
 
 #ifndef SIM_SERVER_PATH
 #error "SIM_SERVER_PATH must name the sim_server executable"
 #endif
-
-extern char** environ;
 
 namespace tongue::server {
 namespace {
@@ -46,153 +37,14 @@ namespace fs = std::filesystem;
 using tongue_lcm::lcmt_tongue_activation;
 using tongue_lcm::lcmt_tongue_state;
 
-// A 40 x 10 x 10 mm block, 4 x 1 x 1 elements (20 nodes), clamped at x = 0, one muscle; dt 2 ms.
-const char* const kScene = R"(
-mesh:
-  box: {size: [0.04, 0.01, 0.01], divisions: [4, 1, 1]}
-material:
-  type: mooney_rivlin5
-  density: 1000
-constraints:
-  - {set: x_min, components: [x, y, z]}
-gravity: [0, -9.81, 0]
-muscles:
-  - {name: flexor, max_force: 0.01, elements: [2, 3], fibres: [{nodes: [2, 3, 4]}]}
-damping: {beta: 0.028}
-analysis: {type: dynamic, duration: 0.02, dt: 0.002}
-)";
-
 constexpr int kWaitMs = 5000;      // longest wait for one expected message
 constexpr int kExitWaitMs = 5000;  // longest wait for the server to exit
+// recv_buf_size of the bus: room for the flood tests' bursts (see BadInputFlood).
+constexpr int kRecvBufSize = 4194304;
 
-// recv_buf_size: room for the flood tests' bursts (see BadInputFlood).
-std::string bus_url(int port) {
-  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0&recv_buf_size=4194304";
-}
-
-// The sim_server process (stdout and stderr to files in dir), SIGKILLed if still running when
-// the guard goes out of scope.
-class ServerProcess {
- public:
-  ServerProcess(const std::vector<std::string>& args, const fs::path& dir) {
-    const std::string out = (dir / "server_stdout.txt").string();
-    err_path_ = dir / "server_stderr.txt";
-    const std::string err = err_path_.string();
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    std::vector<std::string> all{SIM_SERVER_PATH};
-    all.insert(all.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (std::string& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    if (posix_spawn(&pid_, SIM_SERVER_PATH, &actions, nullptr, argv.data(), environ) != 0)
-      pid_ = -1;
-    posix_spawn_file_actions_destroy(&actions);
-  }
-  ~ServerProcess() {
-    if (pid_ > 0) {
-      kill(pid_, SIGKILL);
-      waitpid(pid_, nullptr, 0);
-    }
-  }
-  ServerProcess(const ServerProcess&) = delete;
-  ServerProcess& operator=(const ServerProcess&) = delete;
-
-  bool started() const { return pid_ > 0; }
-  // True while the process has not exited.
-  bool running() {
-    if (pid_ <= 0) return false;
-    int status = 0;
-    if (waitpid(pid_, &status, WNOHANG) == pid_) {
-      pid_ = -1;
-      return false;
-    }
-    return true;
-  }
-  // The exit status, or nullopt when it has not exited within timeout_ms (or died of a signal).
-  std::optional<int> wait_exit(int timeout_ms) {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
-    while (pid_ > 0) {
-      int status = 0;
-      if (waitpid(pid_, &status, WNOHANG) == pid_) {
-        pid_ = -1;
-        if (WIFEXITED(status)) return WEXITSTATUS(status);
-        return std::nullopt;
-      }
-      if (std::chrono::steady_clock::now() > end) return std::nullopt;
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    return std::nullopt;
-  }
-  std::string stderr_text() const { return testing::read_text(err_path_); }
-
- private:
-  pid_t pid_ = -1;
-  fs::path err_path_;
-};
-
-// The test's side of the bus, subscribed to the state channel before the server starts.
-class Controller {
- public:
-  explicit Controller(const std::string& url) : lcm_(url) {
-    lcm_.subscribe(channels_.state, &Controller::on_state, this);
-  }
-  bool good() { return lcm_.good(); }
-
-  // The next state (received states before it are dropped) for which accept is true.
-  std::optional<lcmt_tongue_state> wait_state(
-      const std::function<bool(const lcmt_tongue_state&)>& accept, int timeout_ms = kWaitMs) {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
-    while (true) {
-      while (!states_.empty()) {
-        lcmt_tongue_state s = std::move(states_.front());
-        states_.pop_front();
-        if (accept(s)) return s;
-      }
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-                            end - std::chrono::steady_clock::now())
-                            .count();
-      if (left <= 0) return std::nullopt;
-      lcm_.handleTimeout(static_cast<int>(left));
-    }
-  }
-
-  static lcmt_tongue_activation activation(std::int64_t step, const std::vector<std::string>& names,
-                                           const std::vector<double>& levels) {
-    lcmt_tongue_activation msg;
-    msg.utime = 0;
-    msg.step = step;
-    msg.num_muscles = static_cast<std::int32_t>(names.size());
-    msg.names = names;
-    msg.levels = levels;
-    return msg;
-  }
-  void send_activation(std::int64_t step, const std::vector<std::string>& names,
-                       const std::vector<double>& levels) {
-    const lcmt_tongue_activation msg = activation(step, names, levels);
-    lcm_.publish(channels_.activation, &msg);
-  }
-  void send_raw(const std::vector<std::uint8_t>& bytes) {
-    lcm_.publish(channels_.activation, bytes.data(), static_cast<unsigned>(bytes.size()));
-  }
-  void send_command(const std::string& command) {
-    tongue_lcm::lcmt_tongue_command msg;
-    msg.utime = 0;
-    msg.command = command;
-    lcm_.publish(channels_.command, &msg);
-  }
-
- private:
-  void on_state(const lcm::ReceiveBuffer*, const std::string&, const lcmt_tongue_state* s) {
-    states_.push_back(*s);
-  }
-
-  lcm::LCM lcm_;
-  bus::Channels channels_;
-  std::deque<lcmt_tongue_state> states_;
-};
+using testing::ChildProcess;
+using testing::kBoxScene;
+using testing::ServerController;
 
 // The wire bytes of msg (lcm-gen's encoding: fingerprint, then the fields big-endian).
 std::vector<std::uint8_t> encode(const lcmt_tongue_activation& msg) {
@@ -221,11 +73,12 @@ int count_lines_containing(const std::string& text, const std::string& what) {
 class BadInput : public testing::TempDirTest {
  protected:
   void start(int port) {
-    url_ = bus_url(port);
-    controller_ = std::make_unique<Controller>(url_);
+    url_ = testing::bus_url(port, kRecvBufSize);
+    controller_ = std::make_unique<ServerController>(url_);
     ASSERT_TRUE(controller_->good());
-    server_ = std::make_unique<ServerProcess>(
-        std::vector<std::string>{write("scene.yaml", kScene), "--lcm-url", url_, "--output",
+    server_ = std::make_unique<ChildProcess>(
+        SIM_SERVER_PATH,
+        std::vector<std::string>{write("scene.yaml", kBoxScene), "--lcm-url", url_, "--output",
                                  (dir_ / "run.h5").string()},
         dir_);
     ASSERT_TRUE(server_->started());
@@ -282,8 +135,8 @@ class BadInput : public testing::TempDirTest {
   }
 
   std::string url_;
-  std::unique_ptr<Controller> controller_;
-  std::unique_ptr<ServerProcess> server_;
+  std::unique_ptr<ServerController> controller_;
+  std::unique_ptr<ChildProcess> server_;
 };
 
 TEST_F(BadInput, UndecodableBytesAreRejected) {
@@ -313,7 +166,8 @@ TEST_F(BadInput, CountLargerThanTheArraysIsRejected) {
   expect_rejected_once(
       7762,
       [this] {
-        std::vector<std::uint8_t> bytes = encode(Controller::activation(2, {"flexor"}, {0.9}));
+        std::vector<std::uint8_t> bytes =
+            encode(ServerController::activation(2, {"flexor"}, {0.9}));
         put_int32_be(bytes, kNumMusclesOffset, 2);
         controller_->send_raw(bytes);
       },
@@ -325,7 +179,8 @@ TEST_F(BadInput, CountSmallerThanTheArraysIsRejected) {
   expect_rejected_once(
       7763,
       [this] {
-        std::vector<std::uint8_t> bytes = encode(Controller::activation(2, {"flexor"}, {0.9}));
+        std::vector<std::uint8_t> bytes =
+            encode(ServerController::activation(2, {"flexor"}, {0.9}));
         put_int32_be(bytes, kNumMusclesOffset, 0);
         controller_->send_raw(bytes);
       },
@@ -336,7 +191,8 @@ TEST_F(BadInput, NegativeCountIsRejected) {
   expect_rejected_once(
       7764,
       [this] {
-        std::vector<std::uint8_t> bytes = encode(Controller::activation(2, {"flexor"}, {0.9}));
+        std::vector<std::uint8_t> bytes =
+            encode(ServerController::activation(2, {"flexor"}, {0.9}));
         put_int32_be(bytes, kNumMusclesOffset, -1);
         controller_->send_raw(bytes);
       },
@@ -392,7 +248,7 @@ class BadInputFlood : public BadInput {
     const lcmt_tongue_state s1 = step_to(1, 0.5);
     ASSERT_EQ(s1.step, 1);
     const std::vector<std::uint8_t> bytes =
-        encode(Controller::activation(flood_step, {"flexor"}, {0.9}));
+        encode(ServerController::activation(flood_step, {"flexor"}, {0.9}));
     const auto t0 = std::chrono::steady_clock::now();
     for (int i = 0; i < kFlood; ++i) controller_->send_raw(bytes);
     const double send_s =

@@ -1,40 +1,31 @@
 // Runs the real sim_server executable on a real LCM bus (udpm on the loopback) with a small box
 // scene; the test is the controller: it receives the model and the states, sends activations and
 // commands, and reads the run file back with the HDF5 C API.
-#include <fcntl.h>
 #include <gtest/gtest.h>
 #include <hdf5.h>
 #include <signal.h>
-#include <spawn.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <deque>
 #include <filesystem>
 #include <functional>
 #include <limits>
 #include <optional>
 #include <ostream>
 #include <string>
-#include <thread>
 #include <vector>
-
-#include <lcm/lcm-cpp.hpp>
 
 #include "bus/channels.hpp"
 #include "bus/messages.hpp"
 #include "support/run_command.hpp"
 #include "support/run_file.hpp"
+#include "support/sim_server_driver.hpp"
 #include "support/temp_dir_test.hpp"
 
 #ifndef SIM_SERVER_PATH
 #error "SIM_SERVER_PATH must name the sim_server executable"
 #endif
-
-extern char** environ;
 
 namespace tongue::server {
 namespace {
@@ -43,164 +34,13 @@ namespace fs = std::filesystem;
 using tongue_lcm::lcmt_tongue_model;
 using tongue_lcm::lcmt_tongue_state;
 
-// A 40 x 10 x 10 mm block, 4 x 1 x 1 elements (20 nodes), clamped at x = 0, under gravity, with
-// one listed muscle along the free end; dynamic, dt 2 ms: a step takes well under a millisecond.
-const char* const kScene = R"(
-mesh:
-  box: {size: [0.04, 0.01, 0.01], divisions: [4, 1, 1]}
-material:
-  type: mooney_rivlin5
-  density: 1000
-constraints:
-  - {set: x_min, components: [x, y, z]}
-gravity: [0, -9.81, 0]
-muscles:
-  - {name: flexor, max_force: 0.01, elements: [2, 3], fibres: [{nodes: [2, 3, 4]}]}
-damping: {beta: 0.028}
-analysis: {type: dynamic, duration: 0.02, dt: 0.002}
-)";
-
 constexpr double kDt = 0.002;      // s, the scene's
-constexpr int kWaitMs = 5000;      // longest wait for one expected message
 constexpr int kExitWaitMs = 5000;  // longest wait for the server to exit
 
-std::string bus_url(int port) {
-  return "udpm://239.255.76.67:" + std::to_string(port) + "?ttl=0";
-}
-
-// The sim_server process, killed (SIGKILL) when the guard goes out of scope still running, so
-// that a failing test never leaves a server behind.
-class ServerProcess {
- public:
-  ServerProcess(const std::vector<std::string>& args, const fs::path& dir) {
-    const std::string out = (dir / "server_stdout.txt").string();
-    err_path_ = dir / "server_stderr.txt";
-    const std::string err = err_path_.string();
-    posix_spawn_file_actions_t actions;
-    posix_spawn_file_actions_init(&actions);
-    posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    std::vector<std::string> all{SIM_SERVER_PATH};
-    all.insert(all.end(), args.begin(), args.end());
-    std::vector<char*> argv;
-    for (std::string& a : all) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    if (posix_spawn(&pid_, SIM_SERVER_PATH, &actions, nullptr, argv.data(), environ) != 0)
-      pid_ = -1;
-    posix_spawn_file_actions_destroy(&actions);
-  }
-  ~ServerProcess() {
-    if (pid_ > 0) {
-      kill(pid_, SIGKILL);
-      waitpid(pid_, nullptr, 0);
-    }
-  }
-  ServerProcess(const ServerProcess&) = delete;
-  ServerProcess& operator=(const ServerProcess&) = delete;
-
-  bool started() const { return pid_ > 0; }
-  void signal(int sig) const {
-    if (pid_ > 0) kill(pid_, sig);
-  }
-
-  // The exit status, or nullopt when it has not exited within timeout_ms (or died of a signal).
-  std::optional<int> wait_exit(int timeout_ms) {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
-    while (pid_ > 0) {
-      int status = 0;
-      const pid_t r = waitpid(pid_, &status, WNOHANG);
-      if (r == pid_) {
-        pid_ = -1;
-        if (WIFEXITED(status)) return WEXITSTATUS(status);
-        return std::nullopt;
-      }
-      if (std::chrono::steady_clock::now() > end) return std::nullopt;
-      std::this_thread::sleep_for(std::chrono::milliseconds(5));
-    }
-    return std::nullopt;
-  }
-
-  std::string stderr_text() const { return testing::read_text(err_path_); }
-
- private:
-  pid_t pid_ = -1;
-  fs::path err_path_;
-};
-
-// The test's side of the bus: subscribed to the server's state and model channels before the
-// server starts, so that nothing it publishes is missed.
-class Controller {
- public:
-  explicit Controller(const std::string& url) : lcm_(url) {
-    lcm_.subscribe(channels_.state, &Controller::on_state, this);
-    lcm_.subscribe(channels_.model, &Controller::on_model, this);
-  }
-  bool good() { return lcm_.good(); }
-
-  // The next state (received states before it are dropped) for which accept is true.
-  std::optional<lcmt_tongue_state> wait_state(
-      const std::function<bool(const lcmt_tongue_state&)>& accept, int timeout_ms = kWaitMs) {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
-    while (true) {
-      while (!states_.empty()) {
-        lcmt_tongue_state s = std::move(states_.front());
-        states_.pop_front();
-        if (accept(s)) return s;
-      }
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-                            end - std::chrono::steady_clock::now())
-                            .count();
-      if (left <= 0) return std::nullopt;
-      lcm_.handleTimeout(static_cast<int>(left));
-    }
-  }
-  std::optional<lcmt_tongue_state> wait_step(std::int64_t step, int timeout_ms = kWaitMs) {
-    return wait_state([step](const lcmt_tongue_state& s) { return s.step == step; }, timeout_ms);
-  }
-  std::optional<lcmt_tongue_model> wait_model(int timeout_ms = kWaitMs) {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
-    while (models_.empty()) {
-      const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(
-                            end - std::chrono::steady_clock::now())
-                            .count();
-      if (left <= 0) return std::nullopt;
-      lcm_.handleTimeout(static_cast<int>(left));
-    }
-    lcmt_tongue_model m = std::move(models_.front());
-    models_.pop_front();
-    return m;
-  }
-
-  void send_activation(std::int64_t step, const std::vector<std::string>& names,
-                       const std::vector<double>& levels) {
-    tongue_lcm::lcmt_tongue_activation msg;
-    msg.utime = 0;
-    msg.step = step;
-    msg.num_muscles = static_cast<std::int32_t>(names.size());
-    msg.names = names;
-    msg.levels = levels;
-    lcm_.publish(channels_.activation, &msg);
-  }
-  void send_command(const std::string& command) {
-    tongue_lcm::lcmt_tongue_command msg;
-    msg.utime = 0;
-    msg.command = command;
-    lcm_.publish(channels_.command, &msg);
-  }
-
- private:
-  void on_state(const lcm::ReceiveBuffer*, const std::string&, const lcmt_tongue_state* s) {
-    states_.push_back(*s);
-  }
-  void on_model(const lcm::ReceiveBuffer*, const std::string&, const lcmt_tongue_model* m) {
-    models_.push_back(*m);
-  }
-
-  lcm::LCM lcm_;
-  bus::Channels channels_;
-  std::deque<lcmt_tongue_state> states_;
-  std::deque<lcmt_tongue_model> models_;
-};
+using testing::bus_url;
+using testing::ChildProcess;
+using testing::kBoxScene;
+using testing::ServerController;
 
 using testing::RunFile;
 
@@ -210,12 +50,12 @@ class SimServer : public testing::TempDirTest {
   // after the controller has subscribed.
   void start(int port, const std::vector<std::string>& extra = {}) {
     url_ = bus_url(port);
-    controller_ = std::make_unique<Controller>(url_);
+    controller_ = std::make_unique<ServerController>(url_);
     ASSERT_TRUE(controller_->good());
-    std::vector<std::string> args{write("scene.yaml", kScene), "--lcm-url", url_, "--output",
+    std::vector<std::string> args{write("scene.yaml", kBoxScene), "--lcm-url", url_, "--output",
                                   (dir_ / "run.h5").string()};
     args.insert(args.end(), extra.begin(), extra.end());
-    server_ = std::make_unique<ServerProcess>(args, dir_);
+    server_ = std::make_unique<ChildProcess>(SIM_SERVER_PATH, args, dir_);
     ASSERT_TRUE(server_->started());
   }
 
@@ -234,8 +74,8 @@ class SimServer : public testing::TempDirTest {
   }
 
   std::string url_;
-  std::unique_ptr<Controller> controller_;
-  std::unique_ptr<ServerProcess> server_;
+  std::unique_ptr<ServerController> controller_;
+  std::unique_ptr<ChildProcess> server_;
 };
 
 TEST_F(SimServer, LockStepAdvancesOneStepPerActivationAndShutsDownCleanly) {
@@ -285,7 +125,7 @@ TEST_F(SimServer, LockStepAdvancesOneStepPerActivationAndShutsDownCleanly) {
 struct BadActivation {
   const char* name;
   int port;
-  std::function<void(Controller&)> send;  // sent when the server is at step 1
+  std::function<void(ServerController&)> send;  // sent when the server is at step 1
 };
 
 void PrintTo(const BadActivation& bad, std::ostream* os) {
@@ -321,18 +161,18 @@ INSTANTIATE_TEST_SUITE_P(
     Kinds, SimServerRejects,
     ::testing::Values(
         BadActivation{"UnknownName", 7702,
-                      [](Controller& c) { c.send_activation(2, {"extensor"}, {0.5}); }},
+                      [](ServerController& c) { c.send_activation(2, {"extensor"}, {0.5}); }},
         BadActivation{"NaNLevel", 7703,
-                      [](Controller& c) {
+                      [](ServerController& c) {
                         c.send_activation(2, {"flexor"},
                                           {std::numeric_limits<double>::quiet_NaN()});
                       }},
         BadActivation{"StaleStep", 7704,
-                      [](Controller& c) { c.send_activation(1, {"flexor"}, {0.9}); }},
+                      [](ServerController& c) { c.send_activation(1, {"flexor"}, {0.9}); }},
         BadActivation{"FutureStep", 7705,
-                      [](Controller& c) { c.send_activation(3, {"flexor"}, {0.9}); }},
+                      [](ServerController& c) { c.send_activation(3, {"flexor"}, {0.9}); }},
         BadActivation{"ApplyNowInLockStep", 7706,
-                      [](Controller& c) { c.send_activation(-1, {"flexor"}, {0.9}); }}),
+                      [](ServerController& c) { c.send_activation(-1, {"flexor"}, {0.9}); }}),
     [](const ::testing::TestParamInfo<BadActivation>& info) { return info.param.name; });
 
 // Two lock-step runs with the same activations give bit-identical positions.
@@ -401,13 +241,14 @@ TEST_F(SimServer, FastModeRunsFreelyToMaxSteps) {
 // A step that does not converge even after cuts is published with converged = false and the last
 // accepted state, and ends the server with exit status 2; the run file keeps the accepted steps.
 TEST_F(SimServer, UnconvergedStepIsPublishedAndStopsTheServer) {
-  std::string text = kScene;
+  std::string text = kBoxScene;
   text += "solver: {max_iterations: 1}\n";
   text.replace(text.find("dt: 0.002}"), 10, "dt: 0.002, max_cuts: 0}");
   write("scene.yaml", text);
   url_ = bus_url(7714);
-  controller_ = std::make_unique<Controller>(url_);
-  server_ = std::make_unique<ServerProcess>(
+  controller_ = std::make_unique<ServerController>(url_);
+  server_ = std::make_unique<ChildProcess>(
+      SIM_SERVER_PATH,
       std::vector<std::string>{(dir_ / "scene.yaml").string(), "--lcm-url", url_, "--output",
                                (dir_ / "run.h5").string()},
       dir_);
@@ -427,7 +268,7 @@ TEST_F(SimServer, UnconvergedStepIsPublishedAndStopsTheServer) {
 }
 
 TEST_F(SimServer, SceneWithoutMusclesIsAClearError) {
-  std::string text = kScene;
+  std::string text = kBoxScene;
   text.erase(text.find("muscles:"), text.find("damping:") - text.find("muscles:"));
   const testing::RunResult r = testing::run_command(
       SIM_SERVER_PATH, "'" + write("scene.yaml", text) + "' --lcm-url '" + bus_url(7713) + "'",
@@ -459,12 +300,13 @@ TEST_F(SimServer, RealTimeIsPacedToTheWallClockAndHoldsTheActivation) {
 
 // A dt no machine can keep up with: every late step is an overrun, counted in the state.
 TEST_F(SimServer, RealTimeCountsOverruns) {
-  std::string text = kScene;
+  std::string text = kBoxScene;
   text.replace(text.find("dt: 0.002}"), 10, "dt: 0.000001}");
   write("scene.yaml", text);
   url_ = bus_url(7741);
-  controller_ = std::make_unique<Controller>(url_);
-  server_ = std::make_unique<ServerProcess>(
+  controller_ = std::make_unique<ServerController>(url_);
+  server_ = std::make_unique<ChildProcess>(
+      SIM_SERVER_PATH,
       std::vector<std::string>{(dir_ / "scene.yaml").string(), "--lcm-url", url_, "--mode",
                                "realtime", "--max-steps", "20"},
       dir_);
@@ -522,13 +364,14 @@ TEST_F(SimServer, RealTimeSilenceStopsTheServerWhenAskedTo) {
 // A 40 x 20 x 20 mm block, 4 x 2 x 2 elements: 45 nodes, of which the 3 on the inner axis are not
 // on the surface.
 TEST_F(SimServer, SurfaceNodesOnly) {
-  std::string text = kScene;
+  std::string text = kBoxScene;
   text.replace(text.find("size: [0.04, 0.01, 0.01], divisions: [4, 1, 1]"), 46,
                "size: [0.04, 0.02, 0.02], divisions: [4, 2, 2]");
   write("scene.yaml", text);
   url_ = bus_url(7744);
-  controller_ = std::make_unique<Controller>(url_);
-  server_ = std::make_unique<ServerProcess>(
+  controller_ = std::make_unique<ServerController>(url_);
+  server_ = std::make_unique<ChildProcess>(
+      SIM_SERVER_PATH,
       std::vector<std::string>{(dir_ / "scene.yaml").string(), "--lcm-url", url_, "--output",
                                (dir_ / "run.h5").string(), "--nodes", "surface"},
       dir_);
@@ -569,7 +412,7 @@ TEST_F(SimServer, SurfaceNodesOnly) {
 }
 
 TEST_F(SimServer, NodeSetsTheMeshLacksAreAClearError) {
-  const std::string scene = write("scene.yaml", kScene);
+  const std::string scene = write("scene.yaml", kBoxScene);
   for (const std::string subset : {"midsagittal", "landmarks"}) {
     const testing::RunResult r = testing::run_command(
         SIM_SERVER_PATH, "'" + scene + "' --nodes " + subset + " --lcm-url '" + bus_url(7745) + "'",
@@ -593,10 +436,11 @@ TEST_F(SimServer, PublishEveryKStepsInFastMode) {
 }
 
 TEST_F(SimServer, PublishEveryIsNotForLockStep) {
-  const testing::RunResult r = testing::run_command(
-      SIM_SERVER_PATH,
-      "'" + write("scene.yaml", kScene) + "' --publish-every 2 --lcm-url '" + bus_url(7747) + "'",
-      dir_);
+  const testing::RunResult r =
+      testing::run_command(SIM_SERVER_PATH,
+                           "'" + write("scene.yaml", kBoxScene) +
+                               "' --publish-every 2 --lcm-url '" + bus_url(7747) + "'",
+                           dir_);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("--publish-every applies to --mode fast and realtime only"),
             std::string::npos)
