@@ -9,6 +9,11 @@
 namespace tongue::bus {
 
 inline constexpr std::string_view kDefaultChannelPrefix = "TONGUE_";
+// The bus when none is named: multicast on the loopback host only (ttl 0: never leaves it).
+// A 4 MB socket receive buffer (capped by the kernel at net.core.rmem_max) holds a whole model
+// or state message of a refined tongue: fragments beyond the buffer are dropped unseen.
+inline constexpr std::string_view kDefaultLcmUrl =
+    "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
 
 // True when every character of prefix is in [A-Z0-9_] (the empty prefix is valid).
 inline bool is_valid_channel_prefix(std::string_view prefix) {

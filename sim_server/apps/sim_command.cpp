@@ -1,0 +1,89 @@
+// sim_command COMMAND [--lcm-url URL] [--prefix TONGUE_]
+//
+// Sends one command (reset, pause, resume, shutdown, describe) to a running sim_server on
+// <prefix>COMMAND, so that a user or a script can steer a server from a shell. It does not wait
+// for an answer: the server reports what it did on its own stderr and in its next state.
+//
+// Exit status: 0 sent; 1 bad command line or the bus could not be opened or written.
+#include <chrono>
+#include <cstdio>
+#include <string>
+#include <string_view>
+
+#include <lcm/lcm-cpp.hpp>
+
+#include "bus/channels.hpp"
+#include "bus/messages.hpp"
+
+namespace {
+
+constexpr std::string_view kCommands[] = {"reset", "pause", "resume", "shutdown", "describe"};
+
+void print_usage(std::FILE* to) {
+  std::fprintf(to,
+               "usage: sim_command reset|pause|resume|shutdown|describe [--lcm-url URL]\n"
+               "                   [--prefix TONGUE_]\n"
+               "  --lcm-url  LCM provider URL (default %s)\n"
+               "  --prefix   channel prefix of the server, A-Z 0-9 _ (default TONGUE_)\n",
+               std::string(tongue::bus::kDefaultLcmUrl).c_str());
+}
+
+bool is_command(std::string_view word) {
+  for (const std::string_view c : kCommands) {
+    if (c == word) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  std::string command;
+  std::string url(tongue::bus::kDefaultLcmUrl);
+  std::string prefix(tongue::bus::kDefaultChannelPrefix);
+  for (int i = 1; i < argc; ++i) {
+    const std::string arg = argv[i];
+    if (arg == "--help" || arg == "-h") {
+      print_usage(stdout);
+      return 0;
+    }
+    if (arg == "--lcm-url" || arg == "--prefix") {
+      if (i + 1 >= argc) {
+        std::fprintf(stderr, "sim_command: %s needs a value\n", arg.c_str());
+        return 1;
+      }
+      (arg == "--lcm-url" ? url : prefix) = argv[++i];
+    } else if (!command.empty() || !is_command(arg)) {
+      std::fprintf(stderr, "sim_command: unexpected argument '%s'\n", arg.c_str());
+      print_usage(stderr);
+      return 1;
+    } else {
+      command = arg;
+    }
+  }
+  if (command.empty()) {
+    print_usage(stderr);
+    return 1;
+  }
+  try {
+    const tongue::bus::Channels channels(prefix);
+    lcm::LCM lcm(url);
+    if (!lcm.good()) {
+      std::fprintf(stderr, "sim_command: cannot open the LCM bus '%s'\n", url.c_str());
+      return 1;
+    }
+    tongue_lcm::lcmt_tongue_command message;
+    message.utime = std::chrono::duration_cast<std::chrono::microseconds>(
+                        std::chrono::system_clock::now().time_since_epoch())
+                        .count();
+    message.command = command;
+    if (lcm.publish(channels.command, &message) != 0) {
+      std::fprintf(stderr, "sim_command: could not publish on %s\n", channels.command.c_str());
+      return 1;
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "sim_command: %s\n", e.what());
+    return 1;
+  }
+  return 0;
+}
