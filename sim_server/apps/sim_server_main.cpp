@@ -30,7 +30,7 @@ namespace tongue::apps {
 namespace {
 
 constexpr int kExitError = 1;
-constexpr const char* kDefaultUrl = "udpm://239.255.76.67:7667?ttl=0";
+const std::string kDefaultUrl{bus::kDefaultLcmUrl};
 
 volatile std::sig_atomic_t g_interrupted = 0;
 extern "C" void on_interrupt(int) {
@@ -65,7 +65,7 @@ void print_usage(std::FILE* to) {
       "  --max-steps     end (exit 0) once this step is reached\n"
       "  --nodes         nodes the states carry: all (default), surface, midsagittal, landmarks\n"
       "  --publish-every fast and realtime: publish the state every K steps (default 1)\n",
-      kDefaultUrl);
+      kDefaultUrl.c_str());
 }
 
 bool parse_integer(const std::string& text, long long& out) {
