@@ -368,7 +368,10 @@ void ServerLoop::handle_command(const IncomingMessage& message) {
     std::fprintf(stderr, "sim_server: shutdown at step %lld\n", static_cast<long long>(step_));
     shutdown_ = true;
   } else if (c == "describe") {
+    // The current state follows the model, so that a controller started after the server
+    // (which missed state 0) learns the step to answer, in lock-step as in the other modes.
     publish_model();
+    publish_state(paused_ ? "paused" : "ok");
   } else if (c == "pause") {
     paused_ = true;
     publish_state("paused");

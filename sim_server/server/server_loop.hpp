@@ -15,7 +15,7 @@
 // States carry all nodes or a subset (Nodes); in fast and real-time mode every publish_every-th
 // step is published (every step is logged).
 // Commands: pause, resume, reset (initial state, step 0, all activations 0, counters cleared),
-// shutdown (clean end), describe (the model again).
+// shutdown (clean end), describe (the model again, then the current state).
 #include <cstdint>
 #include <functional>
 #include <map>

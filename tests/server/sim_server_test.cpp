@@ -107,9 +107,12 @@ TEST_F(SimServer, LockStepAdvancesOneStepPerActivationAndShutsDownCleanly) {
     EXPECT_EQ(s.muscle_velocities.size(), 1u);
     EXPECT_GT(s.newton_iterations, 0);
   }
-  // describe publishes the model again.
+  // describe publishes the model again, then the current state (for a late controller).
   controller_->send_command("describe");
   EXPECT_TRUE(controller_->wait_model());
+  const auto again = controller_->wait_step(kSteps);
+  ASSERT_TRUE(again) << server_->stderr_text();
+  EXPECT_EQ(again->status, "ok");
 
   EXPECT_EQ(shut_down(), 0) << server_->stderr_text();
   const RunFile f(dir_ / "run.h5");

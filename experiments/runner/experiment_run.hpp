@@ -1,0 +1,31 @@
+#pragma once
+// One run of an experiment: lcm-logger, sim_server and the controllers as separate processes on
+// a bus of their own, watched until the server has done the experiment's steps (or something
+// fails), stopped cleanly, and their results collected in a run folder with a summary and plots.
+#include <csignal>
+#include <filesystem>
+#include <string>
+
+#include "experiment_file.hpp"
+
+namespace tongue::experiments {
+
+struct RunSettings {
+  std::filesystem::path root = "logs";  // run folders go under it
+  bool plots = true;
+  bool progress = true;  // a progress line on stdout about once a second
+};
+
+struct RunOutcome {
+  bool ok = false;               // every process did its part and the server completed
+  std::filesystem::path folder;  // where everything was kept, also after a failure
+  std::string summary;           // the text of summary.txt
+};
+
+// Throws scene::SceneError for a bad scene and std::runtime_error when the run cannot be set up
+// (folder, programs); a failure during the run is reported in the outcome instead, with every
+// file kept. interrupted (set by a signal handler) ends the run early, cleanly.
+RunOutcome run_experiment(const Experiment& experiment, const RunSettings& settings,
+                          const volatile std::sig_atomic_t& interrupted);
+
+}  // namespace tongue::experiments
