@@ -19,6 +19,7 @@
 #include <optional>
 #include <string>
 
+#include "fem/assembly/ellipticity_monitor.hpp"
 #include "fem/integrator/newmark_integrator.hpp"
 #include "fem/integrator/static_solver.hpp"
 #include "logging/position_log.hpp"
@@ -167,6 +168,7 @@ class BatchRun {
                             tally.add(inc);
                             step_line(tally.steps, inc.time, inc);
                             track(reached);
+                            check_material(inc.time, reached);
                             write_frame(inc.time, reached, nullptr, one.figures());
                           });
     total_.steps += tally.steps;
@@ -242,6 +244,7 @@ class BatchRun {
       }
       simulated_ = integrator.time();
       track(integrator.displacement());
+      check_material(integrator.time(), integrator.displacement());
       if ((s + 1) % every == 0 || s + 1 == count) {
         write_frame(integrator.time(), integrator.displacement(), &integrator.velocity(),
                     since_frame.figures());
@@ -249,6 +252,17 @@ class BatchRun {
       }
     }
     return kExitOk;
+  }
+
+  // Says once, on stderr and in the run file, when the material first loses strong ellipticity.
+  void check_material(double t, const fem::Vector& u) {
+    if (material_warned_) return;
+    const auto loss = monitor_.check(u);
+    if (!loss) return;
+    material_warned_ = true;
+    const std::string text = fem::describe(*loss, built_.solid->material());
+    std::fprintf(stderr, "sim_batch: warning: at t = %.6g s %s\n", t, text.c_str());
+    if (log_) log_->set_attribute("material_warning", "t = " + std::to_string(t) + " s: " + text);
   }
 
   void set_activations(double t) {
@@ -337,6 +351,8 @@ class BatchRun {
   std::unique_ptr<logging::PositionLog> log_;
   Tally total_;
   std::string failure_;
+  fem::EllipticityMonitor monitor_{*built_.solid};
+  bool material_warned_ = false;
   double wall_ = 0.0, simulated_ = 0.0;
   double max_displacement_ = 0.0, final_displacement_ = 0.0;  // m
   double volume_change_ = 0.0, max_volume_change_ = 0.0;      // relative

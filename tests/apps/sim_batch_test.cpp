@@ -164,6 +164,40 @@ analysis: {type: static, load_steps: 2}
   EXPECT_GT(full, 1.5 * half);  // a small load: nearly proportional
 }
 
+// A 10 mm cube stretched to 1.8 times its length along x (symmetry planes on the min faces).
+// mooney_rivlin5 loses strong ellipticity near a uniaxial stretch of 1.54 (fem/material
+// ellipticity tests): the run says so, on stderr and in the run file, before Newton gives up
+// there; the exponential law, elliptic throughout, completes without a warning.
+std::string stretched_cube(const std::string& material) {
+  return "mesh:\n  box: {size: [0.01, 0.01, 0.01], divisions: [2, 2, 2]}\nmaterial: {type: " +
+         material + R"(}
+constraints:
+  - {set: x_min, components: [x]}
+  - {set: y_min, components: [y]}
+  - {set: z_min, components: [z]}
+  - {set: x_max, components: [x], displacement: 0.008}
+analysis: {type: static, load_steps: 8}
+)";
+}
+
+TEST_F(SimBatch, LossOfEllipticityIsReported) {
+  const fs::path h5 = dir_ / "stretch.h5";
+  const RunResult mr5 = run("'" + write_scene(stretched_cube("mooney_rivlin5")).string() +
+                            "' --output '" + h5.string() + "'");
+  EXPECT_NE(mr5.err.find("warning: at t = "), std::string::npos) << mr5.err;
+  EXPECT_NE(mr5.err.find("mooney_rivlin5 is no longer strongly elliptic"), std::string::npos)
+      << mr5.err;
+  const RunFile f(h5);
+  ASSERT_TRUE(f.ok());
+  EXPECT_NE(f.string_attribute("/", "material_warning").find("no longer strongly elliptic"),
+            std::string::npos);
+
+  const RunResult exponential =
+      run("'" + write_scene(stretched_cube("exponential")).string() + "'");
+  EXPECT_EQ(exponential.exit_code, 0) << exponential.out << exponential.err;
+  EXPECT_EQ(exponential.err.find("elliptic"), std::string::npos) << exponential.err;
+}
+
 TEST_F(SimBatch, BadSceneExitsNonZeroNamingTheKeyPath) {
   const fs::path scene = write_scene(std::string(kHead) + R"(
 analysis: {type: dynamic, duration: 0.02, dt: -0.002}

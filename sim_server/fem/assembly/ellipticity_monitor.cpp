@@ -1,0 +1,67 @@
+#include "fem/assembly/ellipticity_monitor.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "fem/element/hex8_shape.hpp"
+#include "fem/material/ellipticity.hpp"
+
+namespace tongue::fem {
+namespace {
+
+// The 8 x 3 coordinates of element e's nodes taken from positions (3 per node).
+hex8::ElementCoords coords(const Mesh& mesh, int e, const Vector& positions) {
+  hex8::ElementCoords X;
+  for (int a = 0; a < 8; ++a) X.row(a) = positions.segment<3>(3 * mesh.elements[e][a]).transpose();
+  return X;
+}
+
+}  // namespace
+
+EllipticityMonitor::EllipticityMonitor(const SolidModel& solid, double screen)
+    : solid_(solid), screen_(screen) {
+  const hex8::ShapeGradients dN_dxi = hex8::reference_gradients(Vec3::Zero());
+  const Vector& rest = solid.rest_positions();
+  centre_gradients_.reserve(solid.mesh().num_elements());
+  for (int e = 0; e < solid.mesh().num_elements(); ++e) {
+    const hex8::ElementCoords X = coords(solid.mesh(), e, rest);
+    centre_gradients_.push_back(dN_dxi * hex8::jacobian(X, Vec3::Zero()).inverse());
+  }
+}
+
+std::optional<EllipticityLoss> EllipticityMonitor::check(const Vector& u) const {
+  const Vector x = solid_.rest_positions() + u;
+  std::optional<EllipticityLoss> worst;
+  for (int e = 0; e < static_cast<int>(centre_gradients_.size()); ++e) {
+    const Mat3 F = coords(solid_.mesh(), e, x).transpose() * centre_gradients_[e];
+    const double J = F.determinant();
+    if (!(J > 0.0)) continue;  // inverted elements are reported by the solver itself
+    const Mat3 C_bar = std::pow(J, -2.0 / 3.0) * (F.transpose() * F);
+    const double strain = (C_bar - Mat3::Identity()).norm();
+    if (strain <= screen_) continue;
+    const EllipticityCheck c = check_ellipticity(solid_.material(), F);
+    if (!c.elliptic() && (!worst || c.min_eigenvalue < worst->min_eigenvalue)) {
+      worst = EllipticityLoss{e, c.min_eigenvalue, strain};
+    }
+  }
+  return worst;
+}
+
+std::string describe(const EllipticityLoss& loss, const Material& material) {
+  char text[512];
+  std::snprintf(text, sizeof text,
+                "the material law %s is no longer strongly elliptic in element %d (smallest "
+                "acoustic-tensor eigenvalue %.3g Pa = %.2f x its initial shear modulus, isochoric "
+                "strain |C_bar - I| = %.2f): the law is unstable there, strain can localize at "
+                "the scale of the mesh, and results from here on are not to be trusted",
+                material.name().c_str(), loss.element, loss.min_eigenvalue,
+                loss.min_eigenvalue / material.initial_shear_modulus(), loss.strain);
+  std::string s = text;
+  if (material.name() == "mooney_rivlin5") {
+    s += " (mooney_rivlin5 with Gerard et al.'s c01, c11 < 0 loses ellipticity beyond a uniaxial "
+         "stretch of about 1.54 or a simple shear of about 0.93; exponential does not)";
+  }
+  return s;
+}
+
+}  // namespace tongue::fem
