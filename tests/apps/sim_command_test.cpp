@@ -28,7 +28,7 @@ using testing::ServerController;
 class SimCommand : public testing::TempDirTest {};
 
 TEST_F(SimCommand, PausesAndShutsDownARunningServer) {
-  const std::string url = bus_url(7840);
+  const std::string url = bus_url(7870);
   ServerController watcher(url);
   ASSERT_TRUE(watcher.good());
   ChildProcess server(SIM_SERVER_PATH, {write("scene.yaml", kBoxScene), "--lcm-url", url}, dir_);

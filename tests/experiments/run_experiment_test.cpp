@@ -1,6 +1,6 @@
 // run_experiment end to end: the real runner starts the real sim_server, lcm-logger and
 // controller processes on a udpm bus of the test's own port, and the test reads what the run
-// left in its folder. Ports 7842-7849.
+// left in its folder. Ports 7872-7879.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -50,7 +50,7 @@ TEST_F(RunExperiment, ControllerCrashIsReportedAndEverythingKept) {
   const std::string file = experiment(
       "crash",
       "  - {name: crasher, program: /bin/sh, args: [-c, 'sleep 0.5; kill -SEGV $$', sh]}\n");
-  const auto r = run(file, 7842);
+  const auto r = run(file, 7872);
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
   const fs::path folder = latest("crash");
   const std::string summary = read_text(folder / "summary.txt");
@@ -72,7 +72,7 @@ TEST_F(RunExperiment, ControllerCrashIsReportedAndEverythingKept) {
 TEST_F(RunExperiment, BadExperimentFileIsAClearError) {
   const std::string file =
       experiment("typo", "  - {name: c, program: /bin/true}\n", "lcm_lgo: false\n");
-  const auto r = run(file, 7843);
+  const auto r = run(file, 7873);
   EXPECT_EQ(r.exit_code, 1);
   EXPECT_NE(r.err.find("typo.yaml: lcm_lgo: unknown key"), std::string::npos) << r.err;
   EXPECT_FALSE(fs::exists(dir_ / "logs")) << "nothing is started for a bad file";
@@ -80,7 +80,7 @@ TEST_F(RunExperiment, BadExperimentFileIsAClearError) {
 
 TEST_F(RunExperiment, MissingProgramIsAClearError) {
   const std::string file = experiment("missing", "  - {name: c, program: ./no_such_controller}\n");
-  const auto r = run(file, 7844);
+  const auto r = run(file, 7874);
   EXPECT_EQ(r.exit_code, 2) << r.out << r.err;
   const std::string summary = read_text(latest("missing") / "summary.txt");
   EXPECT_NE(summary.find("no_such_controller"), std::string::npos) << summary;

@@ -55,7 +55,7 @@ TEST_F(LargeMessages, RefinedTongueModelAndStatesArriveWhole) {
   if (receive_buffer_cap() < 1048576) {
     GTEST_SKIP() << "net.core.rmem_max is " << receive_buffer_cap() << " bytes (< 1 MB)";
   }
-  const std::string url = bus_url(7841, kBuffer);
+  const std::string url = bus_url(7871, kBuffer);
   ServerController controller(url);
   ASSERT_TRUE(controller.good());
   ChildProcess server(

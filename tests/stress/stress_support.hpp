@@ -10,14 +10,17 @@
 
 namespace tongue::testing {
 
-// The head of a tongue scene (paper sec. III): mesh, material at Poisson's ratio nu,
+// The head of a tongue scene (paper sec. III): mesh, material (the paper's by default) at
+// Poisson's ratio nu,
 // constraints, gravity, Rayleigh damping, the built-in muscles. The caller adds activations,
 // analysis, solver and output.
-inline std::string tongue_scene_head(double nu = 0.49) {
+inline std::string tongue_scene_head(double nu = 0.49,
+                                     const std::string& material = "mooney_rivlin5") {
   return R"(mesh:
   tongue: {refinement: 1}
 material:
-  type: mooney_rivlin5
+  type: )" +
+         material + R"(
   parameters: {poisson_ratio: )" +
          std::to_string(nu) + R"(}
 constraints:
