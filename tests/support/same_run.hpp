@@ -25,14 +25,23 @@ inline const std::vector<std::string>& run_result_datasets() {
   return names;
 }
 
-// Expects the run files at a and b to hold the same results, bit for bit, with frames frames.
+// The state of the model alone: times, positions, activations, muscle lengths and velocities
+// (sim_batch logs its settling's Newton figures in frame 0, sim_server none).
+inline const std::vector<std::string>& run_state_datasets() {
+  static const std::vector<std::string> names{"/time", "/positions", "/activations",
+                                              "/muscles/length", "/muscles/velocity"};
+  return names;
+}
+
+// Expects the run files at a and b to hold the same datasets, bit for bit, with frames frames.
 inline void expect_same_results(const std::filesystem::path& a, const std::filesystem::path& b,
-                                std::size_t frames) {
+                                std::size_t frames,
+                                const std::vector<std::string>& datasets = run_result_datasets()) {
   const RunFile first(a), second(b);
   ASSERT_TRUE(first.ok()) << a;
   ASSERT_TRUE(second.ok()) << b;
   ASSERT_EQ(first.doubles("/time").size(), frames) << a;
-  for (const std::string& name : run_result_datasets()) {
+  for (const std::string& name : datasets) {
     const std::vector<double> values = first.doubles(name);
     EXPECT_FALSE(values.empty()) << a << " has no " << name;
     EXPECT_EQ(second.doubles(name), values) << name << " differs between " << a << " and " << b;

@@ -1,7 +1,7 @@
 // The Lua controller (controllers/lua/step_controller.lua, through the build's wrapper) drives the
 // real sim_server over udpm; its runs equal bit for bit those of the C++ test driver sending the
 // same activations, which the test spells out step by step from the command line's windows.
-// Ports 7850-7854.
+// Ports 7850-7855.
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -17,6 +17,12 @@
 
 #ifndef SIM_SERVER_PATH
 #error "SIM_SERVER_PATH must name the sim_server executable"
+#endif
+#ifndef SIM_BATCH_PATH
+#error "SIM_BATCH_PATH must name the sim_batch executable"
+#endif
+#ifndef SCENES_DIR
+#error "SCENES_DIR must name the project's scenes folder"
 #endif
 #ifndef LUA_STEP_CONTROLLER_PATH
 #error "LUA_STEP_CONTROLLER_PATH must name the Lua controller's wrapper"
@@ -133,6 +139,37 @@ TEST_F(LuaController, TwoInstancesOnePerMuscleWithTwoControllers) {
   testing::expect_same_results(dir_ / "lua_run.h5", dir_ / "cpp.h5", kSteps + 1);
   const testing::RunFile run(dir_ / "lua_run.h5");
   EXPECT_EQ(run.doubles("/activations"), logged({flexor, extensor}));
+}
+
+// On the built-in tongue: the paper's styloglossus experiment (scenes/tongue_sg_3n.yaml, settled,
+// SG at 3 N = level 3 / 24 of both halves from t = 0), cut to 5 steps of 4 ms, run by sim_batch
+// from the scene's schedule and by sim_server under the Lua controller: the same positions, bit
+// for bit (sim_batch's step to t uses the levels at t, active while start <= t <= end: steps 1-5;
+// the controller's window [0, 0.12) s holds for the steps starting at 0 .. 16 ms: steps 1-5).
+TEST_F(LuaController, ReproducesSimBatchOnTheTongue) {
+  std::string scene = testing::read_text(SCENES_DIR "/tongue_sg_3n.yaml");
+  const std::string duration = "duration: 0.12 ";
+  ASSERT_NE(scene.find(duration), std::string::npos);
+  scene.replace(scene.find(duration), duration.size(), "duration: 0.02 ");
+  write("scene.yaml", scene);
+  const testing::RunResult batch =
+      testing::run_command(SIM_BATCH_PATH,
+                           "'" + (dir_ / "scene.yaml").string() + "' --quiet --output '" +
+                               (dir_ / "batch.h5").string() + "'",
+                           dir_);
+  ASSERT_EQ(batch.exit_code, 0) << batch.err;
+  {
+    const std::string url = bus_url(7855);
+    auto lua = start_lua(url, "lua",
+                         {"--max-steps", "5", "SG_left=0.125@0:0.12", "SG_right=0.125@0:0.12"});
+    std::vector<std::string> args{(dir_ / "scene.yaml").string(), "--lcm-url",   url, "--output",
+                                  (dir_ / "lua_run.h5").string(), "--max-steps", "5"};
+    ChildProcess server(SIM_SERVER_PATH, args, dir_, "server");
+    ASSERT_EQ(server.wait_exit(60000), 0) << server.stderr_text();
+    ASSERT_EQ(lua->wait_exit(kRunWaitMs), 0) << lua->stderr_text();
+  }
+  testing::expect_same_results(dir_ / "lua_run.h5", dir_ / "batch.h5", 6,
+                               testing::run_state_datasets());
 }
 
 TEST_F(LuaController, AMuscleTheModelLacksIsAClearError) {
