@@ -130,8 +130,10 @@ def plot_muscles(run, out_png, out_csv):
     t_ms = run.time * 1e3
     fig, (top, bottom) = plt.subplots(2, 1, figsize=(9.0, 6.4), dpi=100, sharex=True)
     for i, (name, activation, force) in enumerate(muscles):
-        style = dict(color="C%d" % (i % 10), linewidth=1.6, drawstyle="steps-pre",
-                     linestyle="-" if i < 10 else "--")
+        # Earlier lines wider, so that one hidden under a later equal one (e.g. both halves of a
+        # muscle at one level) still shows at its edges.
+        style = dict(color="C%d" % (i % 10), linewidth=max(1.2, 3.0 - 0.6 * i),
+                     drawstyle="steps-pre", linestyle="-" if i < 10 else "--")
         top.plot(t_ms, activation, label=name, **style)
         bottom.plot(t_ms, force, label=name, **style)
     top.set_ylabel("activation [fraction of max force]")
