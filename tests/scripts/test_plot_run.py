@@ -140,8 +140,9 @@ class RealTongueRun(unittest.TestCase):
         np.testing.assert_array_equal(landmarks["time_ms"], time * 1e3)
         for landmark in ("tip", "palatal_dorsum", "velar_dorsum", "root"):
             node = sets[landmark][0]
-            np.testing.assert_array_equal(landmarks[landmark + "_x_mm"], positions[:, node, 0] * 1e3)
-            np.testing.assert_array_equal(landmarks[landmark + "_y_mm"], positions[:, node, 1] * 1e3)
+            for axis, component in (("_x_mm", 0), ("_y_mm", 1)):
+                np.testing.assert_array_equal(landmarks[landmark + axis],
+                                              positions[:, node, component] * 1e3)
         # The landmarks moved (gravity and the muscle), so the trajectories are not flat.
         self.assertGreater(np.ptp(landmarks["tip_y_mm"]), 1e-3)
 

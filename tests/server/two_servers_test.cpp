@@ -75,6 +75,15 @@ class BusListener {
     const std::lock_guard<std::mutex> lock(mutex_);
     return counts_;
   }
+  // Whether a message on channel has been counted within timeout_ms (polled).
+  bool wait_for(const std::string& channel, int timeout_ms) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+    while (counts()[channel] == 0) {
+      if (std::chrono::steady_clock::now() > end) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    }
+    return true;
+  }
 
  private:
   void on_message(const lcm::ReceiveBuffer*, const std::string& channel) {
@@ -149,7 +158,11 @@ TEST_F(TwoServers, RunAtOnceWithoutCrosstalk) {
   t2.join();
   EXPECT_EQ(error_first, "") << server_first->stderr_text();
   EXPECT_EQ(error_second, "") << server_second->stderr_text();
-  std::this_thread::sleep_for(std::chrono::milliseconds(100));  // the listeners' last messages
+  // The shutdown is the last message of each bus; a listener thread short of CPU may still be
+  // handling what came before it. A little more time after it, for anything straying in late.
+  EXPECT_TRUE(bus_first.wait_for(kFirst.prefix + "COMMAND", kExitWaitMs));
+  EXPECT_TRUE(bus_second.wait_for(kSecond.prefix + "COMMAND", kExitWaitMs));
+  std::this_thread::sleep_for(std::chrono::milliseconds(100));
   bus_first.stop();
   bus_second.stop();
 
