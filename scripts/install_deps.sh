@@ -8,11 +8,12 @@ packages=(
   libeigen3-dev                    # Eigen 3.4
   libsuitesparse-dev libopenblas-dev  # CHOLMOD with an optimized BLAS
   liblcm-dev liblcm-bin            # LCM 1.3: library, lcm-gen, lcm-logger, lcm-logplayer
+  liblcm-lua lua5.2                # controllers/lua: LCM's Lua module is built for Lua 5.2
   libhdf5-dev                      # HDF5 1.10, C and C++
   libyaml-cpp-dev                  # scene files
   libgtest-dev                     # GoogleTest
   python3 python3-h5py python3-numpy  # reading run logs back in tests and scripts
-  python3-matplotlib               # scripts/draw_midsagittal.py
+  python3-matplotlib               # scripts/draw_midsagittal.py, scripts/plot_run.py
 )
 
 missing=()

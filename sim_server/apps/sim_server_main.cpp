@@ -1,12 +1,14 @@
 // sim_server SCENE.yaml [--mode lockstep|fast|realtime] [--lcm-url URL] [--prefix TONGUE_]
 //            [--output FILE] [--timeout-ms N] [--silence-s S] [--on-silence hold|stop|decay]
 //            [--max-steps N] [--nodes all|surface|midsagittal|landmarks] [--publish-every K]
+//            [--controllers N]
 //
 // Runs a dynamic scene with muscles on the LCM bus (server/server_loop.hpp): publishes the model
 // and the state of step 0, then advances under activation messages (lock-step: one step per
-// activation tagged with the next step; fast: free-running with the latest activation; realtime:
-// as fast, paced to the wall clock, overruns counted), logging every step to the run file when
-// one is given (--output or the scene's output.file).
+// activation tagged with the next step, or per N of them merged with --controllers N; fast:
+// free-running with the latest activation; realtime: as fast, paced to the wall clock, overruns
+// counted), logging every step to the run file when one is given (--output or the scene's
+// output.file).
 //
 // Exit status: 0 shutdown command or --max-steps reached; 1 bad command line, scene error (e.g.
 // a mesh without the sets --nodes needs), bus or I/O error; 2 a step failed to converge even
@@ -52,6 +54,7 @@ void print_usage(std::FILE* to) {
       "                  [--prefix TONGUE_] [--output FILE] [--timeout-ms N] [--silence-s S]\n"
       "                  [--on-silence hold|stop|decay] [--max-steps N]\n"
       "                  [--nodes all|surface|midsagittal|landmarks] [--publish-every K]\n"
+      "                  [--controllers N]\n"
       "  --mode          lockstep (default): step k+1 when the activation tagged k+1 arrives;\n"
       "                  fast: free-running, latest activation held;\n"
       "                  realtime: as fast, one step per dt of wall-clock time\n"
@@ -64,7 +67,9 @@ void print_usage(std::FILE* to) {
       "                  decay (realtime only: all activations to 0)\n"
       "  --max-steps     end (exit 0) once this step is reached\n"
       "  --nodes         nodes the states carry: all (default), surface, midsagittal, landmarks\n"
-      "  --publish-every fast and realtime: publish the state every K steps (default 1)\n",
+      "  --publish-every fast and realtime: publish the state every K steps (default 1)\n"
+      "  --controllers   lock-step: step k+1 once N activations tagged k+1 have arrived, each\n"
+      "                  naming its own muscles, merged (default 1)\n",
       kDefaultUrl.c_str());
 }
 
@@ -116,7 +121,7 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
     const bool takes_value = arg == "--mode" || arg == "--lcm-url" || arg == "--prefix" ||
                              arg == "--output" || arg == "--timeout-ms" || arg == "--on-silence" ||
                              arg == "--max-steps" || arg == "--silence-s" || arg == "--nodes" ||
-                             arg == "--publish-every";
+                             arg == "--publish-every" || arg == "--controllers";
     if (takes_value && !value) {
       if (i + 1 >= argc) {
         std::fprintf(stderr, "sim_server: %s needs a value\n", arg.c_str());
@@ -196,6 +201,12 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
         return std::nullopt;
       }
       o.server.publish_every = static_cast<int>(number);
+    } else if (arg == "--controllers") {
+      if (!parse_integer(*value, number) || number < 1 || number > 1000000) {
+        std::fprintf(stderr, "sim_server: --controllers must be an integer in [1, 1000000]\n");
+        return std::nullopt;
+      }
+      o.server.controllers = static_cast<int>(number);
     } else if (!arg.empty() && arg[0] == '-') {
       std::fprintf(stderr, "sim_server: unknown option '%s'\n", arg.c_str());
       return std::nullopt;
@@ -214,6 +225,12 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
     std::fprintf(stderr,
                  "sim_server: --publish-every applies to --mode fast and realtime only (lock-step "
                  "publishes every step)\n");
+    return std::nullopt;
+  }
+  if (o.server.mode != server::Mode::lockstep && o.server.controllers != 1) {
+    std::fprintf(stderr,
+                 "sim_server: --controllers applies to --mode lockstep only (fast and realtime "
+                 "hold the latest activation, whoever sends it)\n");
     return std::nullopt;
   }
   if (o.server.mode != server::Mode::realtime && o.server.on_silence == server::OnSilence::decay) {
@@ -248,9 +265,13 @@ int run(int argc, char** argv) {
     server::LcmServerBus bus(options->url, channels);
     server::ServerLoop loop(scene, std::move(built), bus, options->server,
                             [] { return g_interrupted != 0; });
-    std::fprintf(stderr, "sim_server: %s, %s mode, bus %s, channels %s*, run file %s\n",
-                 options->scene_path.c_str(), mode_name(options->server.mode), options->url.c_str(),
-                 options->prefix.c_str(),
+    const std::string controllers =
+        options->server.controllers == 1
+            ? ""
+            : " (" + std::to_string(options->server.controllers) + " controllers)";
+    std::fprintf(stderr, "sim_server: %s, %s mode%s, bus %s, channels %s*, run file %s\n",
+                 options->scene_path.c_str(), mode_name(options->server.mode), controllers.c_str(),
+                 options->url.c_str(), options->prefix.c_str(),
                  options->server.output.empty() ? "none" : options->server.output.c_str());
     return static_cast<int>(loop.run());
   } catch (const scene::SceneError& e) {

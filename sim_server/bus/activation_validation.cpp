@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <stdexcept>
 #include <system_error>
+#include <utility>
 
 namespace tongue::bus {
 namespace {
@@ -83,6 +84,7 @@ ActivationCheck check_activation(const tongue_lcm::lcmt_tongue_activation& msg,
   check.accepted = true;
   check.levels = current_levels;
   for (std::size_t i = 0; i < n; ++i) check.levels[muscle_of[i]] = msg.levels[i];
+  check.named = std::move(muscle_of);
   return check;
 }
 

@@ -2,6 +2,7 @@
 // Checks on incoming activation messages, before anything reaches the model. A message is
 // applied whole or not at all: one bad entry rejects it, so the model's activations are never
 // half-updated, and the reason names the field and the value for the state's status and the log.
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,9 @@ struct ActivationCheck {
   bool accepted = false;
   // The full level vector by muscle index (the model's order) to apply; only when accepted.
   std::vector<double> levels;
+  // The model indices of the muscles the message names, in the message's order; only when
+  // accepted (lock-step with several controllers merges messages by these).
+  std::vector<std::size_t> named;
   // Why the message was rejected, naming the field and its value; empty when accepted.
   std::string reason;
 };

@@ -44,7 +44,8 @@ ServerLoop::ServerLoop(const scene::Scene& scene, scene::BuiltScene built, Serve
       built_(std::move(built)),
       bus_(bus),
       options_(std::move(options)),
-      stop_requested_(std::move(stop_requested)) {
+      stop_requested_(std::move(stop_requested)),
+      round_(options_.controllers) {
   if (scene_.analysis.type != scene::AnalysisType::dynamic)
     throw std::invalid_argument(scene_.source +
                                 ": the server needs a dynamic analysis (analysis.type: dynamic)");
@@ -57,6 +58,8 @@ ServerLoop::ServerLoop(const scene::Scene& scene, scene::BuiltScene built, Serve
     throw std::invalid_argument("states must be published every 1 or more steps");
   if (options_.on_silence == OnSilence::decay && options_.mode != Mode::realtime)
     throw std::invalid_argument("decay on silence needs the real-time mode");
+  if (options_.controllers != 1 && options_.mode != Mode::lockstep)
+    throw std::invalid_argument("several controllers per step need the lock-step mode");
   for (const auto& m : built_.muscles->muscles()) muscle_names_.push_back(m.name);
   const fem::Mesh& mesh = built_.solid->mesh();
   switch (options_.nodes) {
@@ -194,8 +197,7 @@ ExitStatus ServerLoop::loop() {
       if (step_ != step_before) {
         deadline = now + options_.timeout_ms * 1e-3;
       } else if (now >= deadline) {
-        std::fprintf(stderr, "sim_server: no activation for step %lld within %d ms%s\n",
-                     static_cast<long long>(step_ + 1), options_.timeout_ms,
+        std::fprintf(stderr, "sim_server: %s%s\n", lockstep_wait_text().c_str(),
                      options_.on_silence == OnSilence::stop ? ": stopping" : ", holding");
         if (options_.on_silence == OnSilence::stop) return ExitStatus::silence;
         deadline = now + options_.timeout_ms * 1e-3;
@@ -221,11 +223,22 @@ bool ServerLoop::should_publish() const {
 }
 
 std::string ServerLoop::silence_text() const {
-  if (options_.mode == Mode::lockstep)
-    return "no activation for " + std::to_string(options_.timeout_ms) + " ms";
+  if (options_.mode == Mode::lockstep) {
+    if (options_.controllers == 1)
+      return "no activation for " + std::to_string(options_.timeout_ms) + " ms";
+    return lockstep_wait_text();
+  }
   char text[64];
   std::snprintf(text, sizeof text, "no activation for %g s", options_.silence_s);
   return text;
+}
+
+std::string ServerLoop::lockstep_wait_text() const {
+  const std::string rest = "for step " + std::to_string(step_ + 1) + " within " +
+                           std::to_string(options_.timeout_ms) + " ms";
+  if (options_.controllers == 1) return "no activation " + rest;
+  return std::to_string(round_.received()) + " of " + std::to_string(round_.expected()) +
+         " activations " + rest;
 }
 
 bool ServerLoop::initialize() {
@@ -250,7 +263,7 @@ void ServerLoop::restart() {
   const int m = built_.muscles->num_muscles();
   levels_ = fem::Vector::Zero(m);
   built_.muscles->set_activations(levels_);
-  pending_.reset();
+  round_.start(levels_);
   // A fresh integrator: nothing (factorizations, previous dt) carries over from before a reset,
   // so a run after a reset repeats the first one exactly.
   integrator_ = std::make_unique<fem::NewmarkIntegrator>(*built_.system, built_.dynamic_settings);
@@ -299,6 +312,7 @@ bool ServerLoop::advance(const fem::Vector& levels) {
   accepted_v_ = integrator_->velocity();
   ++step_;
   time_ = integrator_->time();
+  if (options_.mode == Mode::lockstep) round_.start(levels_);
   log_frame();
   if (should_publish()) publish_state("ok");
   return true;
@@ -326,10 +340,10 @@ void ServerLoop::handle_activation(const IncomingMessage& message) {
     reject("invalid activation", check.reason);
     return;
   }
-  const fem::Vector levels = Eigen::Map<const fem::Vector>(
-      check.levels.data(), static_cast<Eigen::Index>(check.levels.size()));
   if (options_.mode != Mode::lockstep) {
-    levels_ = levels;  // held from the next step on
+    // Held from the next step on.
+    levels_ = Eigen::Map<const fem::Vector>(check.levels.data(),
+                                            static_cast<Eigen::Index>(check.levels.size()));
     last_activation_ = steady_seconds();
     if (silent_) {
       silent_ = false;
@@ -348,11 +362,20 @@ void ServerLoop::handle_activation(const IncomingMessage& message) {
            "step " + std::to_string(msg.step) + " > next step " + std::to_string(step_ + 1));
     return;
   }
-  if (paused_) {
-    pending_ = levels;  // applied on resume
+  // While paused a round can be complete; a further message then starts the next one (with one
+  // controller: the latest activation for k + 1 is the one applied on resume).
+  if (round_.complete()) round_.start(levels_);
+  if (const auto muscle = round_.already_set(check.named)) {
+    reject("overlapping activation",
+           "\"" + muscle_names_[*muscle] + "\" is already set for step " +
+               std::to_string(step_ + 1) + " by an earlier message (each of the " +
+               std::to_string(options_.controllers) + " controllers names its own muscles)");
     return;
   }
-  advance(levels);
+  round_.add(check.named, check.levels);
+  if (!round_.complete() || paused_) return;  // a complete round waits for resume
+  const fem::Vector merged = round_.levels();
+  advance(merged);
 }
 
 void ServerLoop::handle_command(const IncomingMessage& message) {
@@ -378,10 +401,9 @@ void ServerLoop::handle_command(const IncomingMessage& message) {
   } else if (c == "resume") {
     if (paused_ && options_.mode == Mode::realtime) anchor_clock();
     paused_ = false;
-    if (pending_) {
-      const fem::Vector levels = *pending_;
-      pending_.reset();
-      advance(levels);
+    if (options_.mode == Mode::lockstep && round_.complete()) {
+      const fem::Vector merged = round_.levels();
+      advance(merged);
     }
   } else if (c == "reset") {
     restart();

@@ -4,7 +4,10 @@
 //
 // Lock-step mode: the state of step k is published; the loop advances to k + 1 when the
 // activation tagged k + 1 arrives (any other step number is rejected and counted). Without one
-// for timeout_ms, it reports the silence on stderr and holds (keeps waiting) or stops.
+// for timeout_ms, it reports the silence on stderr and holds (keeps waiting) or stops. With
+// several controllers (ServerOptions::controllers = N), it advances once N accepted messages
+// tagged k + 1 have arrived, merged (ActivationRound: each names its own muscles; one naming a
+// muscle already set for k + 1 is rejected whole); the silence report says how many arrived.
 // Fast mode: free-running, every step uses the latest accepted activation (zero-order hold; any
 // step number is accepted, -1 included).
 // Real-time mode: as fast mode, but paced to a steady clock: counting from the clock's anchor
@@ -28,6 +31,7 @@
 #include "logging/position_log.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_builder.hpp"
+#include "server/activation_round.hpp"
 #include "server/server_bus.hpp"
 
 namespace tongue::server {
@@ -42,6 +46,9 @@ enum class Nodes { all, surface, midsagittal, landmarks };
 struct ServerOptions {
   Mode mode = Mode::lockstep;
   int timeout_ms = 1000;  // lock-step: silence before a report (and a stop with OnSilence::stop)
+  // Lock-step: accepted activation messages tagged k + 1 that make step k + 1 (one per
+  // controller, each naming its own muscles). Other modes: 1.
+  int controllers = 1;
   OnSilence on_silence = OnSilence::hold;
   double silence_s = 0.5;  // real-time: silence before hold / decay / stop [s]
   Nodes nodes = Nodes::all;
@@ -92,6 +99,7 @@ class ServerLoop {
   double step_start_time() const;  // real-time: steady-clock s at which step_ + 1 may start
   bool should_publish() const;     // fast and real-time: whether step_'s state is published
   std::string silence_text() const;
+  std::string lockstep_wait_text() const;  // what lock-step waits for: the step, m of N arrived
 
   const scene::Scene& scene_;
   scene::BuiltScene built_;
@@ -103,7 +111,9 @@ class ServerLoop {
   fem::Vector initial_u_;                // m, the state step 0 starts from (settled or rest)
   fem::Vector accepted_u_, accepted_v_;  // m, m/s: the last accepted step's state
   fem::Vector levels_;                   // [1] activations held (fast) / of the last step
-  std::optional<fem::Vector> pending_;   // lock-step: accepted levels for step + 1 (while paused)
+  // Lock-step: the messages accepted for step_ + 1 so far, merged; complete only while paused
+  // (a complete round is applied at once otherwise, and on resume).
+  ActivationRound round_;
   std::vector<std::string> muscle_names_;
   std::vector<int> node_indices_;  // nodes the states carry
   std::int64_t step_ = 0;

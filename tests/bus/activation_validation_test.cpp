@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -31,6 +32,7 @@ void expect_rejected(const tongue_lcm::lcmt_tongue_activation& msg,
   const ActivationCheck check = check_activation(msg, kMuscles, kCurrent);
   EXPECT_FALSE(check.accepted);
   EXPECT_TRUE(check.levels.empty());
+  EXPECT_TRUE(check.named.empty());
   for (const std::string& part : parts) {
     EXPECT_NE(check.reason.find(part), std::string::npos)
         << "reason \"" << check.reason << "\" lacks \"" << part << "\"";
@@ -44,18 +46,21 @@ TEST(CheckActivation, AcceptsAFullMessageInTheModelsOrder) {
   ASSERT_TRUE(check.accepted) << check.reason;
   EXPECT_TRUE(check.reason.empty());
   EXPECT_EQ(check.levels, (std::vector<double>{0.25, 0.5, 0.0, 1.0}));
+  EXPECT_EQ(check.named, (std::vector<std::size_t>{3, 2, 1, 0}));  // message order
 }
 
 TEST(CheckActivation, PartialMessageKeepsTheOtherLevels) {
   const auto check = check_activation(message({"SG_left"}, {0.9}), kMuscles, kCurrent);
   ASSERT_TRUE(check.accepted) << check.reason;
   EXPECT_EQ(check.levels, (std::vector<double>{0.1, 0.2, 0.9, 0.4}));
+  EXPECT_EQ(check.named, (std::vector<std::size_t>{2}));
 }
 
 TEST(CheckActivation, EmptyMessageKeepsAllLevels) {
   const auto check = check_activation(message({}, {}, -1), kMuscles, kCurrent);
   ASSERT_TRUE(check.accepted) << check.reason;
   EXPECT_EQ(check.levels, kCurrent);
+  EXPECT_TRUE(check.named.empty());
 }
 
 TEST(CheckActivation, AcceptsTheBoundsZeroAndOne) {

@@ -56,6 +56,24 @@ damping: {beta: 0.028}
 analysis: {type: dynamic, duration: 0.02, dt: 0.002}
 )";
 
+// kBoxScene with a second muscle along the top edge (nodes 7, 8, 9: y = 10 mm, z = 0), so that
+// two controllers can each drive their own muscle: "flexor" (bottom) and "extensor" (top).
+inline constexpr const char* kTwoMuscleBoxScene = R"(
+mesh:
+  box: {size: [0.04, 0.01, 0.01], divisions: [4, 1, 1]}
+material:
+  type: mooney_rivlin5
+  density: 1000
+constraints:
+  - {set: x_min, components: [x, y, z]}
+gravity: [0, -9.81, 0]
+muscles:
+  - {name: flexor, max_force: 0.01, elements: [2, 3], fibres: [{nodes: [2, 3, 4]}]}
+  - {name: extensor, max_force: 0.01, elements: [2, 3], fibres: [{nodes: [7, 8, 9]}]}
+damping: {beta: 0.028}
+analysis: {type: dynamic, duration: 0.02, dt: 0.002}
+)";
+
 inline constexpr int kDefaultWaitMs = 5000;  // longest wait for one expected message
 
 // A child process: executable (a path, or a name looked up on the PATH) run with args, its stdout
@@ -127,6 +145,15 @@ class ChildProcess {
   }
 
   std::string stderr_text() const { return read_text(err_path_); }
+  // Whether the process's stderr contains text within timeout_ms (polled).
+  bool wait_stderr(const std::string& text, int timeout_ms = kDefaultWaitMs) const {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::milliseconds(timeout_ms);
+    while (stderr_text().find(text) == std::string::npos) {
+      if (std::chrono::steady_clock::now() > end) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    return true;
+  }
 
  private:
   pid_t pid_ = -1;
