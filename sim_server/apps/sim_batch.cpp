@@ -256,10 +256,8 @@ class BatchRun {
 
   // Says once, on stderr and in the run file, when the material first loses strong ellipticity.
   void check_material(double t, const fem::Vector& u) {
-    if (material_warned_) return;
-    const auto loss = monitor_.check(u);
+    const auto loss = monitor_.first_loss(u);
     if (!loss) return;
-    material_warned_ = true;
     const std::string text = fem::describe(*loss, built_.solid->material());
     std::fprintf(stderr, "sim_batch: warning: at t = %.6g s %s\n", t, text.c_str());
     if (log_) log_->set_attribute("material_warning", "t = " + std::to_string(t) + " s: " + text);
@@ -352,7 +350,6 @@ class BatchRun {
   Tally total_;
   std::string failure_;
   fem::EllipticityMonitor monitor_{*built_.solid};
-  bool material_warned_ = false;
   double wall_ = 0.0, simulated_ = 0.0;
   double max_displacement_ = 0.0, final_displacement_ = 0.0;  // m
   double volume_change_ = 0.0, max_volume_change_ = 0.0;      // relative

@@ -312,6 +312,14 @@ bool ServerLoop::advance(const fem::Vector& levels) {
   accepted_v_ = integrator_->velocity();
   ++step_;
   time_ = integrator_->time();
+  if (const auto loss = ellipticity_.first_loss(accepted_u_)) {
+    const std::string text = fem::describe(*loss, built_.solid->material());
+    std::fprintf(stderr, "sim_server: warning: at step %lld %s\n", static_cast<long long>(step_),
+                 text.c_str());
+    if (log_) {
+      log_->set_attribute("material_warning", "step " + std::to_string(step_) + ": " + text);
+    }
+  }
   if (options_.mode == Mode::lockstep) round_.start(levels_);
   log_frame();
   if (should_publish()) publish_state("ok");

@@ -27,6 +27,7 @@
 #include <string>
 
 #include "bus/messages.hpp"
+#include "fem/assembly/ellipticity_monitor.hpp"
 #include "fem/integrator/newmark_integrator.hpp"
 #include "logging/position_log.hpp"
 #include "scene/scene.hpp"
@@ -108,6 +109,7 @@ class ServerLoop {
   std::function<bool()> stop_requested_;
   std::unique_ptr<logging::PositionLog> log_;
   std::unique_ptr<fem::NewmarkIntegrator> integrator_;
+  fem::EllipticityMonitor ellipticity_{*built_.solid};  // warns once when the law turns unstable
   fem::Vector initial_u_;                // m, the state step 0 starts from (settled or rest)
   fem::Vector accepted_u_, accepted_v_;  // m, m/s: the last accepted step's state
   fem::Vector levels_;                   // [1] activations held (fast) / of the last step

@@ -47,6 +47,13 @@ std::optional<EllipticityLoss> EllipticityMonitor::check(const Vector& u) const 
   return worst;
 }
 
+std::optional<EllipticityLoss> EllipticityMonitor::first_loss(const Vector& u) {
+  if (reported_) return std::nullopt;
+  const auto loss = check(u);
+  reported_ = loss.has_value();
+  return loss;
+}
+
 std::string describe(const EllipticityLoss& loss, const Material& material) {
   char text[512];
   std::snprintf(text, sizeof text,

@@ -29,10 +29,14 @@ class EllipticityMonitor {
   // The element with the most negative eigenvalue among those that lost ellipticity at
   // displacement u (full vector), or nullopt when every element is elliptic.
   std::optional<EllipticityLoss> check(const Vector& u) const;
+  // As check, but reports a loss only the first time one is found (a run warns once); after
+  // that it costs nothing.
+  std::optional<EllipticityLoss> first_loss(const Vector& u);
 
  private:
   const SolidModel& solid_;
   double screen_;
+  bool reported_ = false;
   std::vector<Eigen::Matrix<double, 8, 3>> centre_gradients_;  // dN_a/dX at each centre
 };
 
