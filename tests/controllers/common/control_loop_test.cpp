@@ -25,6 +25,12 @@
 #ifndef SEQUENCE_PLAYER_PATH
 #error "SEQUENCE_PLAYER_PATH must name the sequence_player executable"
 #endif
+#ifndef EP_CONTROLLER_PATH
+#error "EP_CONTROLLER_PATH must name the ep_controller executable"
+#endif
+#ifndef REPLAY_PATH
+#error "REPLAY_PATH must name the replay executable"
+#endif
 
 namespace tongue::controllers {
 namespace {
@@ -210,6 +216,42 @@ TEST_F(ControlLoop, ScheduleThatDoesNotFitTheServerIsExit1NamingFileAndKey) {
             std::string::npos)
       << err;
   EXPECT_NE(err.find("flexor"), std::string::npos) << err;  // lists the server's muscles
+}
+
+// Bad command lines and input files end every program with exit 1 before it touches the bus,
+// naming the option, or the file and the key.
+TEST_F(ControlLoop, BadCommandLinesAndFilesAreExit1) {
+  struct Case {
+    std::string program, args, expected;
+  };
+  const std::string plan = write("plan.yaml", "delta_lambda_mm: {SG: [1, oops]}");
+  const std::string schedule = write("bad_schedule.yaml", "entries: [{muscle: SG, levl: 1}]");
+  const std::string not_a_log = write("run.h5", "not HDF5");
+  const std::vector<Case> cases = {
+      {EP_CONTROLLER_PATH, "", "--plan is required"},
+      {EP_CONTROLLER_PATH, "--plan '" + plan + "'",
+       plan + ": delta_lambda_mm.SG[1]: expected a number"},
+      {EP_CONTROLLER_PATH, "--plan /nonexistent.yaml", "/nonexistent.yaml: cannot open the file"},
+      {EP_CONTROLLER_PATH, "--plan '" + plan + "' --delay-ms -3", "--delay-ms must be in"},
+      {EP_CONTROLLER_PATH, "--plan '" + plan + "' --velocity-factor maybe", "--velocity-factor"},
+      {SEQUENCE_PLAYER_PATH, "--schedule '" + schedule + "'",
+       schedule + ": entries[0].levl: unknown key"},
+      {SEQUENCE_PLAYER_PATH, "--schedule x.yaml --mode fast",
+       "--mode must be lockstep or realtime"},
+      {REPLAY_PATH, "--log '" + not_a_log + "'", not_a_log + ": cannot open as an HDF5 run file"},
+      {REPLAY_PATH, "--log x.h5 --max-steps ten", "--max-steps must be an integer"},
+  };
+  for (const Case& c : cases) {
+    const tongue::testing::RunResult r = tongue::testing::run_command(c.program, c.args, dir_);
+    EXPECT_EQ(r.exit_code, 1) << c.program << " " << c.args << "\n" << r.err;
+    EXPECT_NE(r.err.find(c.expected), std::string::npos) << c.args << "\n" << r.err;
+  }
+  // --help: the usage with the common options, exit 0.
+  for (const std::string program : {EP_CONTROLLER_PATH, SEQUENCE_PLAYER_PATH, REPLAY_PATH}) {
+    const tongue::testing::RunResult r = tongue::testing::run_command(program, "--help", dir_);
+    EXPECT_EQ(r.exit_code, 0) << program;
+    EXPECT_NE(r.out.find("--timeout-s"), std::string::npos) << r.out;
+  }
 }
 
 }  // namespace
