@@ -4,6 +4,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <deque>
 #include <optional>
 #include <stdexcept>
 
@@ -36,8 +37,10 @@ std::string seconds_text(double s) {
 
 class Loop {
  public:
-  Loop(const CommonOptions& options, Controller& controller, LoopOutcome& outcome)
-      : options_(options),
+  Loop(std::string program, const CommonOptions& options, Controller& controller,
+       LoopOutcome& outcome)
+      : program_(std::move(program)),
+        options_(options),
         controller_(controller),
         outcome_(outcome),
         bus_(options.lcm_url, bus::Channels(options.prefix)) {}
@@ -107,99 +110,114 @@ class Loop {
   }
 
   void run_states() {
-    const double model_time = now_seconds();
-    double last_state_time = model_time;
-    double next_poke = model_time + kFirstPoke;
-    bool answered = false;
-    bool reset_since_answer = false;
-    std::int64_t answered_step = -1;
-    LoopCounts& counts = outcome_.counts;
+    state_deadline_ = now_seconds() + options_.timeout_s;
+    next_poke_ = now_seconds() + kFirstPoke;
+    last_step_ = options_.max_steps;
     const std::optional<std::int64_t> controller_end = controller_.last_step();
-    std::optional<std::int64_t> last = options_.max_steps;
-    if (controller_end && (!last || *controller_end < *last)) last = controller_end;
-
+    if (controller_end && (!last_step_ || *controller_end < *last_step_)) {
+      last_step_ = controller_end;
+      last_step_reason_ = " (the controller's last step)";
+    }
     while (true) {
       if (interrupted()) return;
       check_models();
-      if (!bus_.states().empty()) {
-        std::deque<State> states;
-        states.swap(bus_.states());
-        for (const State& s : states) {
-          if (s.num_muscles != model_.num_muscles ||
-              s.muscle_lengths.size() != model_.muscle_names.size())
-            throw std::runtime_error("the state of step " + std::to_string(s.step) + " has " +
-                                     std::to_string(s.num_muscles) + " muscles, the model " +
-                                     std::to_string(model_.num_muscles));
-          if (counts.states_received > 0 && s.step < counts.last_step) {
-            ++counts.resets;
-            reset_since_answer = true;
-            std::fprintf(stderr,
-                         "controller: the server went back from step %lld to %lld (reset)\n",
-                         static_cast<long long>(counts.last_step), static_cast<long long>(s.step));
-          }
-          if (counts.states_received == 0) counts.first_step = s.step;
-          counts.last_step = s.step;
-          ++counts.states_received;
-          if (!s.converged) {
-            end(kExitNotConverged, "the server did not converge at step " +
-                                       std::to_string(s.step + 1) + ": " + s.status);
-            return;
-          }
-          controller_.observe(s);
-        }
-        last_state_time = now_seconds();
-        const std::int64_t k = states.back().step;
-        if (last && k >= *last) {
-          const bool by_controller = controller_end && *last == *controller_end &&
-                                     (!options_.max_steps || *controller_end < *options_.max_steps);
-          end(kExitOk, "reached step " + std::to_string(*last) +
-                           (by_controller ? " (the controller's last step)" : " (--max-steps)"));
-          return;
-        }
-        if (!answered || k != answered_step || reset_since_answer) {
-          const MuscleLevels levels = controller_.command(k + 1);
-          bus_.send_activation(options_.mode == LoopMode::lockstep ? k + 1 : -1, levels);
-          ++counts.activations_sent;
-          answered = true;
-          answered_step = k;
-          reset_since_answer = false;
-        }
-      }
-
+      if (!bus_.states().empty() && !take_states()) return;
       const double now = now_seconds();
-      double deadline = last_state_time + options_.timeout_s;
-      if (counts.states_received == 0) {
-        if (now > deadline)
-          return (void)end(kExitTimeout, "model received but no state on " + bus_.channels().state +
-                                             " within " + seconds_text(options_.timeout_s));
-        if (options_.mode == LoopMode::lockstep && now >= next_poke) {
-          command("pause");
-          command("resume");
-          next_poke = now + kPokeInterval;
-        }
-        deadline = std::min(deadline, next_poke);
-      } else if (now > deadline) {
-        return (void)end(kExitTimeout, "no state for " + seconds_text(options_.timeout_s) +
-                                           " after step " + std::to_string(counts.last_step));
+      if (now > state_deadline_) {
+        const LoopCounts& c = outcome_.counts;
+        end(kExitTimeout, c.states_received == 0
+                              ? "model received but no state on " + bus_.channels().state +
+                                    " within " + seconds_text(options_.timeout_s)
+                              : "no state for " + seconds_text(options_.timeout_s) +
+                                    " after step " + std::to_string(c.last_step));
+        return;
       }
-      bus_.poll(wait_ms(deadline, now));
+      double wake = state_deadline_;
+      if (outcome_.counts.states_received == 0 && options_.mode == LoopMode::lockstep) {
+        if (now >= next_poke_) poke(now);
+        wake = std::min(wake, next_poke_);
+      }
+      bus_.poll(wait_ms(wake, now));
     }
   }
 
+  // A lock-step server publishes each state once; a controller that missed the one it waits on
+  // (started late) gets it again from a pause (which publishes it) and a resume (which changes
+  // nothing else).
+  void poke(double now) {
+    command("pause");
+    command("resume");
+    next_poke_ = now + kPokeInterval;
+  }
+
+  // Feeds the queued states to the controller and answers the latest. False when the loop ends.
+  bool take_states() {
+    std::deque<State> states;
+    states.swap(bus_.states());
+    for (const State& s : states)
+      if (!observe(s)) return false;
+    state_deadline_ = now_seconds() + options_.timeout_s;
+    const std::int64_t k = states.back().step;
+    if (last_step_ && k >= *last_step_) {
+      end(kExitOk, "reached step " + std::to_string(*last_step_) + last_step_reason_);
+      return false;
+    }
+    // Each step is answered once: a repeated state (e.g. "paused") would make a stale activation.
+    if (answered_step_ && *answered_step_ == k && !reset_since_answer_) return true;
+    const MuscleLevels levels = controller_.command(k + 1);
+    bus_.send_activation(options_.mode == LoopMode::lockstep ? k + 1 : -1, levels);
+    ++outcome_.counts.activations_sent;
+    answered_step_ = k;
+    reset_since_answer_ = false;
+    return true;
+  }
+
+  bool observe(const State& s) {
+    LoopCounts& counts = outcome_.counts;
+    if (s.num_muscles != model_.num_muscles ||
+        s.muscle_lengths.size() != model_.muscle_names.size())
+      throw std::runtime_error("the state of step " + std::to_string(s.step) + " has " +
+                               std::to_string(s.num_muscles) + " muscles, the model " +
+                               std::to_string(model_.num_muscles));
+    if (counts.states_received > 0 && s.step < counts.last_step) {
+      ++counts.resets;
+      reset_since_answer_ = true;
+      std::fprintf(stderr, "%s: the server went back from step %lld to %lld (reset)\n",
+                   program_.c_str(), static_cast<long long>(counts.last_step),
+                   static_cast<long long>(s.step));
+    }
+    if (counts.states_received == 0) counts.first_step = s.step;
+    counts.last_step = s.step;
+    ++counts.states_received;
+    if (!s.converged)
+      return end(kExitNotConverged, "the server did not converge at step " +
+                                        std::to_string(s.step + 1) + ": " + s.status);
+    controller_.observe(s);
+    return true;
+  }
+
+  const std::string program_;
   const CommonOptions& options_;
   Controller& controller_;
   LoopOutcome& outcome_;
   InterruptHandlers interrupts_;
   ControllerBus bus_;
   Model model_;
+  double state_deadline_ = 0.0;  // steady-clock s by which the next state must come
+  double next_poke_ = 0.0;       // steady-clock s of the next pause + resume (lock-step, late)
+  std::optional<std::int64_t> last_step_;  // the loop ends after this step's state
+  std::string last_step_reason_ = " (--max-steps)";
+  std::optional<std::int64_t> answered_step_;  // the step of the last state answered
+  bool reset_since_answer_ = false;
 };
 
 }  // namespace
 
-LoopOutcome run_control_loop(const CommonOptions& options, Controller& controller) {
+LoopOutcome run_control_loop(const std::string& program, const CommonOptions& options,
+                             Controller& controller) {
   LoopOutcome outcome;
   try {
-    Loop(options, controller, outcome).run();
+    Loop(program, options, controller, outcome).run();
   } catch (const std::exception& e) {
     outcome.exit_code = kExitError;
     outcome.reason = std::string("error: ") + e.what();

@@ -51,7 +51,9 @@ struct LoopOutcome {
 // Runs the loop for controller on the bus of options. A bus error, or an InputError from
 // controller.start (its input does not fit the model), ends it with kExitError and the message
 // as the reason.
-LoopOutcome run_control_loop(const CommonOptions& options, Controller& controller);
+// program names the controller in the messages it prints.
+LoopOutcome run_control_loop(const std::string& program, const CommonOptions& options,
+                             Controller& controller);
 
 // The summary line: "<program>: <reason>; <n> states received (steps a-b), <m> activations sent
 // (lockstep), <c> commands sent[; <controller summary>]".

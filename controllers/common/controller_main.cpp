@@ -35,7 +35,7 @@ int controller_main(int argc, const char* const* argv, const ProgramSpec& spec) 
     std::fprintf(stderr, "%s: error: %s\n", spec.name.c_str(), e.what());
     return kExitError;
   }
-  const LoopOutcome outcome = run_control_loop(command_line.common, *controller);
+  const LoopOutcome outcome = run_control_loop(spec.name, command_line.common, *controller);
   std::fprintf(
       stderr, "%s\n",
       summary_line(spec.name, outcome, command_line.common, controller->summary()).c_str());

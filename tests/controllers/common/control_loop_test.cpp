@@ -105,16 +105,18 @@ TEST_F(ControlLoop, NoServerIsExit4AfterTheTimeoutHavingAskedForTheModel) {
   CommandListener listener(bus_url(port));
   const auto start = std::chrono::steady_clock::now();
   auto p = player(port, kRamp, {"--timeout-s", "0.7"});
-  listener.poll_for(900);
   EXPECT_EQ(p->wait_exit(kExitWaitMs), 4) << p->stderr_text();
+  listener.poll_for(200);  // what it sent waits in the listener's socket until then
   const double took =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_GE(took, 0.7);  // waited the whole timeout
   const std::string err = p->stderr_text();
   EXPECT_NE(err.find("no model on TONGUE_MODEL"), std::string::npos) << err;
   EXPECT_NE(err.find("0 states received"), std::string::npos) << err;
-  // describe after 200 ms, then after 400 ms more: two within 0.7 s.
-  EXPECT_EQ(listener.count("describe"), 2);
+  // describe after 200 ms, then 400 ms later (backing off, not flooding): one or two within 0.7 s
+  // (the second may fall after the timeout on a loaded machine).
+  EXPECT_GE(listener.count("describe"), 1);
+  EXPECT_LE(listener.count("describe"), 2);
 }
 
 TEST_F(ControlLoop, LockStepSendsTheLevelOfEachStepAndEndsAtMaxSteps) {
@@ -137,13 +139,20 @@ TEST_F(ControlLoop, LockStepSendsTheLevelOfEachStepAndEndsAtMaxSteps) {
   EXPECT_EQ(run.doubles("/activations"), expected_levels(kRamp, 10));
 }
 
+// The real-time server does not wait for its controller: the player is started first and the
+// server only once the player asks for the model (it is then listening), so that the player's
+// answers reach the server long before its last step (250 steps of 2 ms: 0.5 s).
 TEST_F(ControlLoop, RealTimeAnswersEachStateWithApplyNow) {
   const int port = 7802;
   ServerController bus(bus_url(port));
-  auto s = server(port, {"--mode", "realtime", "--max-steps", "100"});
+  CommandListener listener(bus_url(port));
   auto p = player(port, "entries: [{muscle: flexor, level: 0.5}]",
-                  {"--mode", "realtime", "--max-steps", "100"});
-  const auto last = bus.wait_step(100, kExitWaitMs);
+                  {"--mode", "realtime", "--max-steps", "250"});
+  for (int waited = 0; listener.count("describe") == 0 && waited < kExitWaitMs; waited += 50)
+    listener.poll_for(50);
+  ASSERT_GE(listener.count("describe"), 1) << p->stderr_text();
+  auto s = server(port, {"--mode", "realtime", "--max-steps", "250"});
+  const auto last = bus.wait_step(250, kExitWaitMs);
   ASSERT_TRUE(last) << s->stderr_text() << p->stderr_text();
   EXPECT_EQ(last->activations, (std::vector<double>{0.5}));
   EXPECT_EQ(last->rejected_messages, 0);  // step -1 is what a real-time server takes
