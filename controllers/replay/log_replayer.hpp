@@ -1,0 +1,34 @@
+#pragma once
+// Replays the activations of a run file into a tongue server: row k + 1 of /activations for step
+// k + 1, every muscle of the log named, so the server repeats the logged run (lock-step: bit for
+// bit). The loop ends after the state of the log's last step.
+//
+// The log must fit the server: the same muscle names (any order), the same F_max where the log
+// has them, and frames that are the server's steps (time of row k = k dt: every step logged,
+// no reset in the run); otherwise the replay would not be the logged run, and start() says why.
+#include <optional>
+#include <string>
+
+#include "common/controller.hpp"
+#include "replay/run_log.hpp"
+
+namespace tongue::controllers::replay {
+
+class LogReplayer final : public Controller {
+ public:
+  explicit LogReplayer(RunLog log) : log_(std::move(log)) {}
+
+  // Throws InputError naming the run file and the dataset when the log does not fit the model.
+  void start(const Model& model) override;
+  void observe(const State&) override {}
+  MuscleLevels command(std::int64_t step) override;
+  std::optional<std::int64_t> last_step() const override {
+    return static_cast<std::int64_t>(log_.frames()) - 1;
+  }
+  std::string summary() const override;
+
+ private:
+  RunLog log_;
+};
+
+}  // namespace tongue::controllers::replay

@@ -1,0 +1,31 @@
+// replay --log RUN.h5 [common options]
+//
+// Republishes the activations of a run file in lock-step (row k + 1 for step k + 1), so that a
+// fresh server on the same scene repeats the logged run.
+#include <memory>
+
+#include "common/controller_main.hpp"
+#include "replay/log_replayer.hpp"
+
+namespace {
+
+using namespace tongue::controllers;
+
+std::unique_ptr<Controller> make(const CommandLine& line) {
+  return std::make_unique<replay::LogReplayer>(replay::read_run_log(line.values.at("--log")));
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ProgramSpec spec;
+  spec.name = "replay";
+  spec.synopsis = "--log RUN.h5";
+  spec.options_usage =
+      "  --log RUN.h5      run file (sim_server or sim_batch, every step logged) whose\n"
+      "                    /activations are sent again, row k+1 for step k+1\n";
+  spec.options = {"--log"};
+  spec.required_options = {"--log"};
+  spec.make_controller = make;
+  return controller_main(argc, argv, spec);
+}
