@@ -100,7 +100,7 @@ class StateWatcher {
   // Steps per wall second between the first and the last state received (0: too few).
   double steps_per_second() const {
     const double span = std::chrono::duration<double>(last_at_ - first_at_).count();
-    return (last_step_ && *last_step_ > first_step_ && span > 0.0)
+    return (driving_ && *last_step_ > first_step_ && span > 0.0)
                ? static_cast<double>(*last_step_ - first_step_) / span
                : 0.0;
   }
@@ -109,7 +109,10 @@ class StateWatcher {
  private:
   void on_state(const lcm::ReceiveBuffer*, const std::string&,
                 const tongue_lcm::lcmt_tongue_state* s) {
-    if (!last_step_) {
+    // The pace counts from the first step the controllers drove (state 0 comes before they
+    // start).
+    if (s->step >= 1 && !driving_) {
+      driving_ = true;
       first_step_ = s->step;
       first_at_ = Clock::now();
     }
@@ -120,6 +123,7 @@ class StateWatcher {
 
   lcm::LCM lcm_;
   std::optional<std::int64_t> last_step_;
+  bool driving_ = false;
   std::int64_t first_step_ = 0;
   Clock::time_point first_at_, last_at_;
   bool unconverged_ = false;
@@ -211,9 +215,13 @@ RunOutcome run_experiment(const Experiment& e, const RunSettings& settings,
   while (failure.empty()) {
     watcher.poll(50);
     if (!server.process->running()) break;
+    // A controller may end once it has seen the last state (its --max-steps); before that, or
+    // with an error, it has failed the run.
+    const bool last_state_out = watcher.last_step() && *watcher.last_step() >= steps;
     for (Member& c : controllers) {
-      if (!c.process->running()) {
-        c.status = c.process->status();
+      if (c.process->running()) continue;
+      c.status = c.process->status();
+      if (!(last_state_out && succeeded(*c.status))) {
         failure = "controller '" + c.name + "' ended before the run was done (" +
                   describe_status(*c.status) + ")";
         break;

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "support/run_command.hpp"
 #include "support/run_file.hpp"
@@ -43,6 +44,32 @@ class RunExperiment : public testing::TempDirTest {
     return fs::canonical(dir_ / "logs" / (name + "-latest"));
   }
 };
+
+// The whole path: sequence_player drives the box through the runner; everything is collected and
+// the figures in the summary are the run file's.
+TEST_F(RunExperiment, CompletesAndCollectsEverything) {
+  write("steps.yaml", "entries:\n  - {muscle: flexor, start: 0.0, end: 0.01, level: 0.5}\n");
+  const std::string file = experiment(
+      "played", "  - {name: player, program: sequence_player, args: [--schedule, steps.yaml]}\n");
+  const auto r = run(file, 7877);
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  const fs::path folder = latest("played");
+  const std::string summary = read_text(folder / "summary.txt");
+  EXPECT_NE(summary.find("result: completed"), std::string::npos) << summary;
+  EXPECT_NE(summary.find("status 'completed', 10 steps"), std::string::npos) << summary;
+  // States: 0 to 10, plus state 0 again for the controller's describe (it joins late).
+  EXPECT_NE(summary.find(" states, 10 activations"), std::string::npos) << summary;
+  const RunFile f(folder / "run.h5");
+  ASSERT_TRUE(f.ok());
+  const std::vector<double> a = f.doubles("/activations");
+  ASSERT_EQ(a.size(), 11u);  // step 0 and the 10 steps of 2 ms
+  EXPECT_EQ(a[0], 0.0);
+  EXPECT_EQ(a[5], 0.5);   // t = 10 ms, inside the step
+  EXPECT_EQ(a[10], 0.0);  // t = 20 ms, after it
+  for (const char* name : {"bus.lcmlog", "run.xmf", "sim_server.err", "player.err", "scene.yaml"}) {
+    EXPECT_TRUE(fs::exists(folder / name)) << name;
+  }
+}
 
 // A controller that dies (here: a shell killing itself with SIGSEGV while the server waits for
 // it) is named in the summary, the server is stopped cleanly and what was logged is kept.
