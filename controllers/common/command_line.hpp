@@ -9,9 +9,9 @@
 #include <string>
 #include <vector>
 
-namespace tongue::controllers {
+#include "bus/channels.hpp"
 
-inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
+namespace tongue::controllers {
 
 // lockstep: answer the state of step k with the activation for step k + 1, the server advancing
 // when it arrives. realtime: answer each state with an activation for step -1 ("apply now"),
@@ -19,8 +19,8 @@ inline constexpr const char* kDefaultLcmUrl = "udpm://239.255.76.67:7667?ttl=0";
 enum class LoopMode { lockstep, realtime };
 
 struct CommonOptions {
-  std::string lcm_url = kDefaultLcmUrl;
-  std::string prefix = "TONGUE_";
+  std::string lcm_url{bus::kDefaultLcmUrl};
+  std::string prefix{bus::kDefaultChannelPrefix};
   LoopMode mode = LoopMode::lockstep;
   std::optional<std::int64_t> max_steps;  // send nothing for later steps, exit 0 after this one
   double timeout_s = 5.0;                 // s without the model or a state before giving up

@@ -17,8 +17,6 @@ namespace {
 
 constexpr double kFirstDescribe = 0.2;    // s without a model before the first "describe"
 constexpr double kLongestDescribe = 1.0;  // s, the interval "describe" backs off to
-constexpr double kFirstPoke = 0.3;        // s after the model without a state before a poke
-constexpr double kPokeInterval = 1.0;     // s between pokes (pause + resume)
 constexpr double kPollSlice = 0.05;       // s, longest single wait: signals and timeouts are
                                           // looked at least this often
 
@@ -111,7 +109,6 @@ class Loop {
 
   void run_states() {
     state_deadline_ = now_seconds() + options_.timeout_s;
-    next_poke_ = now_seconds() + kFirstPoke;
     last_step_ = options_.max_steps;
     const std::optional<std::int64_t> controller_end = controller_.last_step();
     if (controller_end && (!last_step_ || *controller_end < *last_step_)) {
@@ -132,22 +129,8 @@ class Loop {
                                     " after step " + std::to_string(c.last_step));
         return;
       }
-      double wake = state_deadline_;
-      if (outcome_.counts.states_received == 0 && options_.mode == LoopMode::lockstep) {
-        if (now >= next_poke_) poke(now);
-        wake = std::min(wake, next_poke_);
-      }
-      bus_.poll(wait_ms(wake, now));
+      bus_.poll(wait_ms(state_deadline_, now));
     }
-  }
-
-  // A lock-step server publishes each state once; a controller that missed the one it waits on
-  // (started late) gets it again from a pause (which publishes it) and a resume (which changes
-  // nothing else).
-  void poke(double now) {
-    command("pause");
-    command("resume");
-    next_poke_ = now + kPokeInterval;
   }
 
   // Feeds the queued states to the controller and answers the latest. False when the loop ends.
@@ -203,8 +186,7 @@ class Loop {
   InterruptHandlers interrupts_;
   ControllerBus bus_;
   Model model_;
-  double state_deadline_ = 0.0;  // steady-clock s by which the next state must come
-  double next_poke_ = 0.0;       // steady-clock s of the next pause + resume (lock-step, late)
+  double state_deadline_ = 0.0;            // steady-clock s by which the next state must come
   std::optional<std::int64_t> last_step_;  // the loop ends after this step's state
   std::string last_step_reason_ = " (--max-steps)";
   std::optional<std::int64_t> answered_step_;  // the step of the last state answered

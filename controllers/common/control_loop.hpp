@@ -6,9 +6,8 @@
 //    <prefix>COMMAND, again after 400 ms, 800 ms, then every second (a server still settling
 //    answers them all at once, so they are spaced out rather than flooded).
 // 2. Wait for states on <prefix>STATE. A controller started after the server has missed the
-//    state the lock-step server is waiting on: when none comes within 300 ms of the model, the
-//    loop sends "pause" then "resume" (again every second), which makes a lock-step server
-//    publish its current state again and changes nothing else.
+//    state a lock-step server waits on; the server's answer to "describe" (model, then current
+//    state) brings it.
 // 3. Every state goes to the controller (observe); the latest one, step k, is answered with the
 //    controller's levels for step k + 1, tagged k + 1 (lockstep) or -1 (realtime: the server
 //    holds it). A step is answered once (a repeated state, e.g. "paused", is not answered again)
@@ -36,7 +35,7 @@ enum ExitCode : int {
 struct LoopCounts {
   std::int64_t states_received = 0;
   std::int64_t activations_sent = 0;
-  std::int64_t commands_sent = 0;  // describe, pause, resume
+  std::int64_t commands_sent = 0;  // describe
   std::int64_t first_step = -1;    // of the states received; -1: none
   std::int64_t last_step = -1;
   int resets = 0;  // times the server's step went down
