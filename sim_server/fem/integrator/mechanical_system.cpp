@@ -1,14 +1,21 @@
 #include "fem/integrator/mechanical_system.hpp"
 
+#include <cmath>
+
 namespace tongue::fem {
 
 AssemblyStatus MechanicalSystem::residual(const Vector& u, double load_factor, Vector& r,
-                                          SymmetricMatrix* stiffness) const {
+                                          SymmetricMatrix* stiffness, double* load_norm) const {
   const AssemblyStatus status = solid_->assemble(u, r, stiffness);
   if (!status.ok) return status;
   Vector f_ext = Vector::Zero(r.size());
   for (const auto& load : loads_) load->add(u, load_factor, f_ext, stiffness);
   r -= f_ext;
+  if (load_norm) {
+    double sum = 0.0;
+    for (int dof : solid_->dofs().free_dofs()) sum += f_ext[dof] * f_ext[dof];
+    *load_norm = std::sqrt(sum);
+  }
   return status;
 }
 

@@ -20,9 +20,10 @@ class MechanicalSystem {
   const SolidModel& solid() const { return *solid_; }
 
   // r = f_int(u) - load_factor f_ext(u) over all dofs (the entries at prescribed dofs are the
-  // negated reactions); when stiffness is given, dr/du over the free dofs.
+  // negated reactions); when stiffness is given, dr/du over the free dofs. When load_norm is
+  // given it receives ||load_factor f_ext(u)|| over the free dofs [N], a scale for r.
   AssemblyStatus residual(const Vector& u, double load_factor, Vector& r,
-                          SymmetricMatrix* stiffness) const;
+                          SymmetricMatrix* stiffness, double* load_norm = nullptr) const;
   // f_ext(u) over all dofs.
   Vector external_force(const Vector& u) const;
 

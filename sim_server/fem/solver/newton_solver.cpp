@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <limits>
 
 namespace tongue::fem {
 
@@ -42,10 +43,15 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, Vector& x) {
   double r_norm = r.norm();
   report.initial_residual = report.final_residual = r_norm;
   report.residual_history.push_back(r_norm);
-  if (r_norm <= s.residual_atol) {
+  report.force_scale = problem.force_scale();
+  // Already in equilibrium with the forces acting, to the tolerance an iterated solution meets.
+  if (r_norm <= std::max(s.residual_rtol * report.force_scale, s.residual_atol)) {
     report.converged = true;
     return report;
   }
+  const double residual_tolerance =
+      std::max(s.residual_rtol * std::max(r_norm, report.force_scale), s.residual_atol);
+  double previous_step = 0.0;  // ||eta dx|| of the previous iteration [m]
 
   bool reform = factor_age_ < 0 || s.max_tangent_reuse == 0;
   for (int k = 0; k < s.max_iterations; ++k) {
@@ -114,13 +120,23 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, Vector& x) {
     const double previous_norm = r_norm;
     r_norm = r.norm();
     report.final_residual = r_norm;
-    report.last_increment = eta * dx.norm();
+    const double step = eta * dx.norm();
+    report.last_increment = step;
     report.residual_history.push_back(r_norm);
 
-    const bool residual_small =
-        r_norm <= std::max(s.residual_rtol * report.initial_residual, s.residual_atol);
+    // The corrections still to come form about a geometric series of ratio rho (modified Newton
+    // contracts linearly; full Newton's rho falls towards 0), so the error left in x is about
+    // step * rho / (1 - rho); no contraction yet (rho >= 1) leaves it unbounded.
+    double remaining_error = step;
+    if (k > 0 && previous_step > 0.0) {
+      const double rho = step / previous_step;
+      remaining_error =
+          rho < 1.0 ? step * rho / (1.0 - rho) : std::numeric_limits<double>::infinity();
+    }
+    previous_step = step;
+    const bool residual_small = r_norm <= residual_tolerance;
     const bool increment_small =
-        report.last_increment <= std::max(s.increment_rtol * (x - x0).norm(), s.increment_atol);
+        remaining_error <= std::max(s.increment_rtol * (x - x0).norm(), s.increment_atol);
     if ((residual_small && increment_small) || r_norm <= s.residual_atol) {
       report.converged = true;
       return report;

@@ -33,6 +33,7 @@ struct NewtonReport {
   int factorizations = 0;
   int residual_evaluations = 0;
   double initial_residual = 0.0;  // ||r_0|| [N]
+  double force_scale = 0.0;       // F of the convergence test [N]
   double final_residual = 0.0;    // [N]
   double last_increment = 0.0;    // [m]
   double max_shift = 0.0;         // largest tangent shift the factorization needed (0: none)
