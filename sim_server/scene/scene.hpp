@@ -76,7 +76,9 @@
 //     max_cuts: 4                  # a failing step or increment is halved at most this often
 //   solver: {residual_rtol: 1e-6, residual_atol: 1e-9, increment_rtol: 1e-6,
 //            increment_atol: 1e-12, max_iterations: 25, line_search: true,
-//            max_tangent_reuse: 0, reform_ratio: 0.5}   # all optional (fem::NewtonSettings)
+//            max_tangent_reuse: 100, reform_ratio: 0.5,  # all optional (fem::NewtonSettings;
+//            quasi_newton_updates: 0,                    # default_solver_settings() below)
+//            threads: 1}                                 # element loops on 1 or 2 threads
 //   output:
 //     file: logs/run.h5            # relative to the working directory; default: no file
 //     every: 1                     # write every k-th step (the first and last are always written)
@@ -194,6 +196,17 @@ struct OutputSpec {
   int every = 1;
 };
 
+// The solver settings of a scene that names none: fem::NewtonSettings' defaults, except that a
+// factorization is reused (modified Newton) across iterations and steps, re-formed as soon as
+// the residual stops falling by half per iteration. In dynamics the effective tangent
+// K_T + c0 M + c1 beta_R K0 is dominated by its constant part, so a reused factor keeps
+// converging; in the static settling the reform test keeps it safe.
+inline fem::NewtonSettings default_solver_settings() {
+  fem::NewtonSettings s;
+  s.max_tangent_reuse = 100;
+  return s;
+}
+
 struct Scene {
   std::string source;    // the scene file's path (or a label), used in error messages
   std::string text;      // the YAML text as read, stored in the run file
@@ -212,7 +225,8 @@ struct Scene {
   // E_contracted / E_rest of active muscle tissue (tongue/active_stiffening.hpp); 1: none.
   double muscle_stiffening = model::kContractedToRestStiffness;
   AnalysisSpec analysis;
-  fem::NewtonSettings solver;
+  fem::NewtonSettings solver = default_solver_settings();
+  int threads = 1;  // solver.threads: threads of the element loops, 1 or 2
   OutputSpec output;
 };
 

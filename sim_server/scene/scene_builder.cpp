@@ -50,9 +50,11 @@ class Builder {
     }
     try {
       // The fibre stiffness couples consecutive fibre nodes, which may share no element.
-      built.solid = std::make_shared<const fem::SolidModel>(
+      auto solid = std::make_shared<fem::SolidModel>(
           std::move(mesh), material, scene_.material.formulation, scene_.material.density,
           built.prescribed, model::fibre_node_pairs(muscles));
+      solid->set_threads(scene_.threads);
+      built.solid = std::move(solid);
     } catch (const std::invalid_argument& e) {
       fail("mesh", e.what());
     }
