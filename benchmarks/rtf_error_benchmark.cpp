@@ -58,6 +58,10 @@ scene::Scene reference_scene(scene::Scene s) {
   s.solver.increment_rtol = 1e-10;
   s.solver.increment_atol = 1e-15;  // m
   s.solver.max_tangent_reuse = 50;  // at 0.1 ms c0 M dominates: a reused factor converges fast
+  s.solver.reform_ratio = 0.5;
+  s.solver.quasi_newton_updates = 0;
+  s.solver_keys.insert({"residual_rtol", "residual_atol", "increment_rtol", "increment_atol",
+                        "max_tangent_reuse", "reform_ratio", "quasi_newton_updates"});
   s.threads = 1;
   return s;
 }
@@ -166,14 +170,17 @@ scene::Scene apply(scene::Scene s, const Setting& g) {
   s.analysis.dt = g.dt;
   if (g.tolerance == Tolerance::loose) {
     s.solver.residual_rtol = s.solver.increment_rtol = 1e-3;
+    s.solver_keys.insert({"residual_rtol", "increment_rtol"});
   } else if (g.tolerance == Tolerance::tight) {
     s.solver.residual_rtol = s.solver.increment_rtol = 1e-9;
     s.solver.residual_atol = 1e-12;   // N
     s.solver.increment_atol = 1e-15;  // m
+    s.solver_keys.insert({"residual_rtol", "increment_rtol", "residual_atol", "increment_atol"});
   }
   if (g.full_newton) {
     s.solver.max_tangent_reuse = 0;
     s.solver.quasi_newton_updates = 0;
+    s.solver_keys.insert({"max_tangent_reuse", "quasi_newton_updates"});
   }
   if (g.material != s.material.type) {
     // The same small-strain shear modulus as the paper's law (mu0 = 2 (c10 + c01) = 4918 Pa)

@@ -76,9 +76,12 @@
 //     max_cuts: 4                  # a failing step or increment is halved at most this often
 //   solver: {residual_rtol: 1e-6, residual_atol: 1e-9, increment_rtol: 1e-6,
 //            increment_atol: 1e-12, max_iterations: 25, line_search: true,
-//            max_tangent_reuse: 100, reform_ratio: 0.5,  # all optional (fem::NewtonSettings;
-//            quasi_newton_updates: 0,                    # default_solver_settings() below)
-//            threads: 1}                                 # element loops on 1 or 2 threads
+//            max_tangent_reuse: 0, reform_ratio: 0.5, quasi_newton_updates: 0,
+//            threads: 1}   # all optional; defaults of fem::NewtonSettings for statics and the
+//                          # settling; a dynamic analysis defaults residual_rtol and
+//                          # increment_rtol to 1e-4, max_tangent_reuse to 100, reform_ratio to
+//                          # 0.8 and quasi_newton_updates to 8 (dynamic_newton_settings);
+//                          # threads: element loops on 1 or 2 threads
 //   output:
 //     file: logs/run.h5            # relative to the working directory; default: no file
 //     every: 1                     # write every k-th step (the first and last are always written)
@@ -87,6 +90,7 @@
 #include <array>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <variant>
 #include <vector>
@@ -196,17 +200,6 @@ struct OutputSpec {
   int every = 1;
 };
 
-// The solver settings of a scene that names none: fem::NewtonSettings' defaults, except that a
-// factorization is reused (modified Newton) across iterations and steps, re-formed as soon as
-// the residual stops falling by half per iteration. In dynamics the effective tangent
-// K_T + c0 M + c1 beta_R K0 is dominated by its constant part, so a reused factor keeps
-// converging; in the static settling the reform test keeps it safe.
-inline fem::NewtonSettings default_solver_settings() {
-  fem::NewtonSettings s;
-  s.max_tangent_reuse = 100;
-  return s;
-}
-
 struct Scene {
   std::string source;    // the scene file's path (or a label), used in error messages
   std::string text;      // the YAML text as read, stored in the run file
@@ -225,7 +218,11 @@ struct Scene {
   // E_contracted / E_rest of active muscle tissue (tongue/active_stiffening.hpp); 1: none.
   double muscle_stiffening = model::kContractedToRestStiffness;
   AnalysisSpec analysis;
-  fem::NewtonSettings solver = default_solver_settings();
+  // The solver block over fem::NewtonSettings' defaults, and the keys it gave: a dynamic
+  // analysis takes its own defaults for the keys not given (dynamic_newton_settings in
+  // scene_builder.hpp).
+  fem::NewtonSettings solver;
+  std::set<std::string> solver_keys;
   int threads = 1;  // solver.threads: threads of the element loops, 1 or 2
   OutputSpec output;
 };

@@ -152,7 +152,7 @@ class Parser {
     }
     read_analysis(required(root, "", "analysis"), "analysis", scene.analysis);
     if (const auto n = root["solver"]; present(n))
-      read_solver(n, "solver", scene.solver, scene.threads);
+      read_solver(n, "solver", scene.solver, scene.solver_keys, scene.threads);
     if (const auto n = root["output"]; present(n)) read_output(n, "output", scene.output);
     check_set_references(root, scene);
     return scene;
@@ -700,14 +700,17 @@ class Parser {
   }
 
   void read_solver(const YAML::Node& n, const std::string& path, fem::NewtonSettings& s,
-                   int& threads) const {
+                   std::set<std::string>& keys, int& threads) const {
     expect_map(n, path);
     check_keys(
         n, path,
         {"residual_rtol", "residual_atol", "increment_rtol", "increment_atol", "max_iterations",
          "line_search", "max_tangent_reuse", "reform_ratio", "quasi_newton_updates", "threads"});
     const auto get = [&](const char* key, auto&& read) {
-      if (const auto v = n[key]; present(v)) read(v, child_path(path, key));
+      if (const auto v = n[key]; present(v)) {
+        read(v, child_path(path, key));
+        keys.insert(key);
+      }
     };
     get("residual_rtol", [&](auto v, auto p) { s.residual_rtol = non_negative(v, p, ""); });
     get("residual_atol", [&](auto v, auto p) { s.residual_atol = non_negative(v, p, "N"); });
