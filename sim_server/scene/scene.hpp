@@ -76,7 +76,12 @@
 //     max_cuts: 4                  # a failing step or increment is halved at most this often
 //   solver: {residual_rtol: 1e-6, residual_atol: 1e-9, increment_rtol: 1e-6,
 //            increment_atol: 1e-12, max_iterations: 25, line_search: true,
-//            max_tangent_reuse: 0, reform_ratio: 0.5}   # all optional (fem::NewtonSettings)
+//            max_tangent_reuse: 0, reform_ratio: 0.5, quasi_newton_updates: 0,
+//            threads: 1}   # all optional; defaults of fem::NewtonSettings for statics and the
+//                          # settling; a dynamic analysis defaults residual_rtol and
+//                          # increment_rtol to 1e-4, max_tangent_reuse to 100, reform_ratio to
+//                          # 0.8 and quasi_newton_updates to 8 (dynamic_newton_settings);
+//                          # threads: element loops on 1 or 2 threads
 //   output:
 //     file: logs/run.h5            # relative to the working directory; default: no file
 //     every: 1                     # write every k-th step (the first and last are always written)
@@ -85,6 +90,7 @@
 #include <array>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <variant>
 #include <vector>
@@ -212,7 +218,12 @@ struct Scene {
   // E_contracted / E_rest of active muscle tissue (tongue/active_stiffening.hpp); 1: none.
   double muscle_stiffening = model::kContractedToRestStiffness;
   AnalysisSpec analysis;
+  // The solver block over fem::NewtonSettings' defaults, and the keys it gave: a dynamic
+  // analysis takes its own defaults for the keys not given (dynamic_newton_settings in
+  // scene_builder.hpp).
   fem::NewtonSettings solver;
+  std::set<std::string> solver_keys;
+  int threads = 1;  // solver.threads: threads of the element loops, 1 or 2
   OutputSpec output;
 };
 

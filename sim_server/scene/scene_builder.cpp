@@ -50,9 +50,11 @@ class Builder {
     }
     try {
       // The fibre stiffness couples consecutive fibre nodes, which may share no element.
-      built.solid = std::make_shared<const fem::SolidModel>(
+      auto solid = std::make_shared<fem::SolidModel>(
           std::move(mesh), material, scene_.material.formulation, scene_.material.density,
           built.prescribed, model::fibre_node_pairs(muscles));
+      solid->set_threads(scene_.threads);
+      built.solid = std::move(solid);
     } catch (const std::invalid_argument& e) {
       fail("mesh", e.what());
     }
@@ -102,7 +104,7 @@ class Builder {
     built.dynamic_settings.damping = scene_.damping;
     built.dynamic_settings.lumped_mass = a.lumped_mass;
     built.dynamic_settings.max_cuts = a.max_cuts;
-    built.dynamic_settings.newton = scene_.solver;
+    built.dynamic_settings.newton = dynamic_newton_settings(scene_);
     return built;
   }
 
@@ -328,6 +330,17 @@ class Builder {
 
 BuiltScene build_scene(const Scene& scene) {
   return Builder(scene).build();
+}
+
+fem::NewtonSettings dynamic_newton_settings(const Scene& scene) {
+  fem::NewtonSettings s = scene.solver;
+  const auto given = [&](const char* key) { return scene.solver_keys.count(key) > 0; };
+  if (!given("residual_rtol")) s.residual_rtol = 1e-4;
+  if (!given("increment_rtol")) s.increment_rtol = 1e-4;
+  if (!given("max_tangent_reuse")) s.max_tangent_reuse = 100;
+  if (!given("reform_ratio")) s.reform_ratio = 0.8;
+  if (!given("quasi_newton_updates")) s.quasi_newton_updates = 8;
+  return s;
 }
 
 int time_step_count(const AnalysisSpec& analysis) {

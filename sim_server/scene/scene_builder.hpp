@@ -44,6 +44,19 @@ struct BuiltScene {
 // segment, and activations naming unknown muscles or groups or asking more than max_force.
 BuiltScene build_scene(const Scene& scene);
 
+// The Newton settings of the scene's dynamic steps: its solver block, with these defaults for
+// the keys it does not give (the static settling keeps fem::NewtonSettings' defaults):
+//  - residual_rtol = increment_rtol = 1e-4 (residual against the forces acting, error left in x
+//    against the step's motion): on the default tongue at dt 4 ms the same nodal error against
+//    a dt = 0.1 ms reference as 1e-6 or 1e-9 (0.043 mm RMS, all of it from the time step;
+//    benchmarks/rtf_error_benchmark), for a third fewer iterations;
+//  - max_tangent_reuse = 100, reform_ratio = 0.8, quasi_newton_updates = 8: a factorization
+//    reused across iterations and steps, re-formed when the residual falls by less than a
+//    factor 0.8 in an iteration, its direction improved by BFGS updates. The effective tangent
+//    K_T + c0 M + c1 beta_R K0 is dominated by its constant part, so a reused factor keeps
+//    converging (a static solve has no such part: there it is full Newton by default).
+fem::NewtonSettings dynamic_newton_settings(const Scene& scene);
+
 // Time steps of a dynamic analysis: ceil(duration / dt), the last one shortened to end exactly
 // at the duration (a remainder below 1e-9 dt is dropped as round-off).
 int time_step_count(const AnalysisSpec& analysis);

@@ -151,7 +151,8 @@ class Parser {
       }
     }
     read_analysis(required(root, "", "analysis"), "analysis", scene.analysis);
-    if (const auto n = root["solver"]; present(n)) read_solver(n, "solver", scene.solver);
+    if (const auto n = root["solver"]; present(n))
+      read_solver(n, "solver", scene.solver, scene.solver_keys, scene.threads);
     if (const auto n = root["output"]; present(n)) read_output(n, "output", scene.output);
     check_set_references(root, scene);
     return scene;
@@ -698,13 +699,18 @@ class Parser {
     }
   }
 
-  void read_solver(const YAML::Node& n, const std::string& path, fem::NewtonSettings& s) const {
+  void read_solver(const YAML::Node& n, const std::string& path, fem::NewtonSettings& s,
+                   std::set<std::string>& keys, int& threads) const {
     expect_map(n, path);
-    check_keys(n, path,
-               {"residual_rtol", "residual_atol", "increment_rtol", "increment_atol",
-                "max_iterations", "line_search", "max_tangent_reuse", "reform_ratio"});
+    check_keys(
+        n, path,
+        {"residual_rtol", "residual_atol", "increment_rtol", "increment_atol", "max_iterations",
+         "line_search", "max_tangent_reuse", "reform_ratio", "quasi_newton_updates", "threads"});
     const auto get = [&](const char* key, auto&& read) {
-      if (const auto v = n[key]; present(v)) read(v, child_path(path, key));
+      if (const auto v = n[key]; present(v)) {
+        read(v, child_path(path, key));
+        keys.insert(key);
+      }
     };
     get("residual_rtol", [&](auto v, auto p) { s.residual_rtol = non_negative(v, p, ""); });
     get("residual_atol", [&](auto v, auto p) { s.residual_atol = non_negative(v, p, "N"); });
@@ -713,6 +719,12 @@ class Parser {
     get("max_iterations", [&](auto v, auto p) { s.max_iterations = at_least(v, p, 1); });
     get("line_search", [&](auto v, auto p) { s.line_search = boolean(v, p); });
     get("max_tangent_reuse", [&](auto v, auto p) { s.max_tangent_reuse = at_least(v, p, 0); });
+    get("quasi_newton_updates",
+        [&](auto v, auto p) { s.quasi_newton_updates = at_least(v, p, 0); });
+    get("threads", [&](auto v, auto p) {
+      threads = at_least(v, p, 1);
+      if (threads > 2) fail(p, "must be 1 or 2, got " + std::to_string(threads), v);
+    });
     get("reform_ratio", [&](auto v, auto p) {
       s.reform_ratio = positive(v, p, "");
       if (s.reform_ratio > 1.0) fail(p, "must not exceed 1, got " + format(s.reform_ratio), v);

@@ -43,6 +43,14 @@ void ActiveStiffening::add(const fem::Vector& u, double load_factor, fem::Vector
   force -= extra;
 }
 
+bool ActiveStiffening::add_element_weights(double load_factor, std::vector<double>& weights) const {
+  const std::vector<double> w = extra_weights(load_factor);
+  if (w.empty()) return true;
+  if (weights.empty()) weights.assign(w.size(), 1.0);
+  for (std::size_t e = 0; e < w.size(); ++e) weights[e] += w[e];
+  return true;
+}
+
 std::vector<double> ActiveStiffening::element_scales() const {
   std::vector<double> w = extra_weights(1.0);
   if (w.empty()) w.assign(muscles_of_element_.size(), 0.0);

@@ -28,6 +28,10 @@ class ActiveStiffening : public fem::ForceContribution {
   void add(const fem::Vector& u, double load_factor, fem::Vector& force,
            fem::SymmetricMatrix* stiffness) const override;
 
+  // Folds the extra energy into the solid's assembly: adds load_factor (ratio - 1) a_e to each
+  // element's weight; nothing while no muscle is active.
+  bool add_element_weights(double load_factor, std::vector<double>& weights) const override;
+
   double ratio() const { return ratio_; }
   // The current energy scale of each element, 1 + (ratio - 1) a_e.
   std::vector<double> element_scales() const;

@@ -168,6 +168,29 @@ solver: {max_iterations: 11, max_tangent_reuse: 3}
   EXPECT_DOUBLE_EQ(built.dynamic_settings.damping.stiffness_coefficient, 0.028);
   EXPECT_EQ(built.dynamic_settings.newton.max_tangent_reuse, 3);
   EXPECT_TRUE(built.system->loads().empty());
+  // Keys not given take the dynamic defaults in the steps, fem's in the settling.
+  EXPECT_DOUBLE_EQ(built.dynamic_settings.newton.residual_rtol, 1e-4);
+  EXPECT_EQ(built.dynamic_settings.newton.quasi_newton_updates, 8);
+  EXPECT_DOUBLE_EQ(built.static_settings.newton.residual_rtol, fem::NewtonSettings{}.residual_rtol);
+  EXPECT_EQ(built.static_settings.newton.max_tangent_reuse, 3);
+  EXPECT_EQ(built.solid->threads(), 1);
+}
+
+TEST(SceneBuilder, DynamicStepsDefaultToAReusedFactorization) {
+  const Scene scene = parse_scene(R"(
+mesh: {box: {size: [0.04, 0.01, 0.01], divisions: [4, 1, 1]}}
+material: {type: mooney_rivlin5}
+analysis: {type: dynamic, duration: 0.1, dt: 0.001}
+solver: {threads: 2}
+)",
+                                  "", "test.yaml");
+  const BuiltScene built = build_scene(scene);
+  const fem::NewtonSettings& d = built.dynamic_settings.newton;
+  EXPECT_EQ(d.max_tangent_reuse, 100);
+  EXPECT_DOUBLE_EQ(d.reform_ratio, 0.8);
+  EXPECT_DOUBLE_EQ(d.increment_rtol, 1e-4);
+  EXPECT_EQ(built.static_settings.newton.max_tangent_reuse, 0);  // statics: full Newton
+  EXPECT_EQ(built.solid->threads(), 2);
 }
 
 TEST(SceneBuilder, TimeStepsCoverTheDurationExactly) {

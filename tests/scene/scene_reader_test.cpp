@@ -57,6 +57,9 @@ TEST(SceneReader, MinimalSceneGetsDefaults) {
   EXPECT_EQ(s.solver.max_iterations, newton_defaults.max_iterations);
   EXPECT_DOUBLE_EQ(s.solver.residual_rtol, newton_defaults.residual_rtol);
   EXPECT_EQ(s.solver.line_search, newton_defaults.line_search);
+  EXPECT_EQ(s.solver.max_tangent_reuse, newton_defaults.max_tangent_reuse);
+  EXPECT_TRUE(s.solver_keys.empty());
+  EXPECT_EQ(s.threads, 1);
   EXPECT_TRUE(s.output.file.empty());
   EXPECT_EQ(s.output.every, 1);
   EXPECT_EQ(s.source, "test.yaml");
@@ -93,7 +96,8 @@ analysis:
   lumped_mass: true
   max_cuts: 3
 solver: {residual_rtol: 1e-7, residual_atol: 1e-10, increment_rtol: 1e-5, increment_atol: 1e-11,
-         max_iterations: 12, line_search: false, max_tangent_reuse: 5, reform_ratio: 0.25}
+         max_iterations: 12, line_search: false, max_tangent_reuse: 5, reform_ratio: 0.25,
+         quasi_newton_updates: 4, threads: 2}
 output: {file: logs/x.h5, every: 5}
 )",
                               "", "test.yaml");
@@ -134,6 +138,9 @@ output: {file: logs/x.h5, every: 5}
   EXPECT_FALSE(s.solver.line_search);
   EXPECT_EQ(s.solver.max_tangent_reuse, 5);
   EXPECT_DOUBLE_EQ(s.solver.reform_ratio, 0.25);
+  EXPECT_EQ(s.solver.quasi_newton_updates, 4);
+  EXPECT_EQ(s.threads, 2);
+  EXPECT_EQ(s.solver_keys.size(), 10u);  // every key given
   EXPECT_EQ(s.output.file, "logs/x.h5");
   EXPECT_EQ(s.output.every, 5);
 }
@@ -388,6 +395,13 @@ TEST(SceneErrors, NegativeDamping) {
 
 TEST(SceneErrors, SolverMaxIterationsZero) {
   expect_error(std::string(kMinimal) + "solver: {max_iterations: 0}\n", "solver.max_iterations");
+}
+
+TEST(SceneErrors, SolverThreadsOutOfRange) {
+  expect_error(std::string(kMinimal) + "solver: {threads: 0}\n", "solver.threads");
+  expect_error(std::string(kMinimal) + "solver: {threads: 3}\n", "solver.threads", "1 or 2");
+  expect_error(std::string(kMinimal) + "solver: {quasi_newton_updates: -1}\n",
+               "solver.quasi_newton_updates");
 }
 
 TEST(SceneErrors, OutputEveryZero) {

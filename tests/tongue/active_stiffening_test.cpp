@@ -1,6 +1,7 @@
 // Active stiffening adds (ratio - 1) a times the passive elastic response of a muscle's elements.
 #include <gtest/gtest.h>
 
+#include "fem/integrator/mechanical_system.hpp"
 #include "fem/material/material_factory.hpp"
 #include "fem/mesh/box_generator.hpp"
 #include "tongue/active_stiffening.hpp"
@@ -72,6 +73,35 @@ TEST(ActiveStiffening, AddsTheScaledPassiveResponseOfTheActiveElements) {
   const std::vector<double> scales = stiffening.element_scales();
   EXPECT_DOUBLE_EQ(scales[0], 1.0);
   EXPECT_DOUBLE_EQ(scales[1], 1.0 + (ratio - 1.0) * a);
+}
+
+// In a MechanicalSystem the stiffening rides along in the solid's element pass (one evaluation per
+// element, weight 1 + (ratio - 1) a): the same residual and tangent as the solid plus add().
+TEST(ActiveStiffening, FoldedIntoTheSolidsPassGivesTheSameResidualAndTangent) {
+  const Fixture f = make();
+  f.muscles->set_activation(0, 0.6);
+  auto stiffening = std::make_shared<ActiveStiffening>(f.solid, f.muscles, 5.0);
+  fem::MechanicalSystem system(f.solid);
+  system.add_load(stiffening);
+  const fem::Vector u = deformed(*f.solid);
+  fem::Vector r;
+  fem::SymmetricMatrix K(f.solid->pattern());
+  ASSERT_TRUE(system.residual(u, 1.0, r, &K).ok);
+
+  fem::Vector expected;
+  fem::SymmetricMatrix expected_K(f.solid->pattern());
+  ASSERT_TRUE(f.solid->assemble(u, expected, &expected_K).ok);
+  fem::Vector load = fem::Vector::Zero(u.size());
+  stiffening->add(u, 1.0, load, &expected_K);
+  expected -= load;
+  // (1 + w) f_e against f_e + w f_e: the same sums grouped differently, round-off apart.
+  EXPECT_LT((r - expected).norm(), 1e-13 * expected.norm());
+  double k_diff = 0.0, k_norm = 0.0;
+  for (std::size_t k = 0; k < K.values().size(); ++k) {
+    k_diff = std::max(k_diff, std::abs(K.values()[k] - expected_K.values()[k]));
+    k_norm = std::max(k_norm, std::abs(expected_K.values()[k]));
+  }
+  EXPECT_LT(k_diff, 1e-13 * k_norm);
 }
 
 TEST(ActiveStiffening, RejectsARatioBelowOne) {

@@ -2,6 +2,7 @@
 // External forces. A load may depend on the configuration (a muscle fibre pulls along its
 // current direction); its derivative then enters the tangent.
 #include <string>
+#include <vector>
 
 #include "fem/assembly/sparse_matrix.hpp"
 #include "fem/types.hpp"
@@ -18,6 +19,15 @@ class ForceContribution {
                    SymmetricMatrix* stiffness) const = 0;
   // True when f_ext does not depend on u (its tangent is zero).
   virtual bool is_dead_load() const { return false; }
+  // A load that is a multiple of the solid's own energy on some elements (active muscle
+  // stiffening) may instead be folded into the solid's assembly as element weights, so that
+  // each element is evaluated once: it then adds load_factor times its weight of each element
+  // to `weights` (filling an empty vector with 1 first, and leaving it empty while it adds
+  // nothing) and returns true, and the caller does not call add() for the residual. The
+  // default: false, not such a load.
+  virtual bool add_element_weights(double /*load_factor*/, std::vector<double>& /*weights*/) const {
+    return false;
+  }
 };
 
 // A dead load: a fixed vector of nodal forces (gravity, point loads, tractions on the reference

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <limits>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 
@@ -26,9 +27,11 @@ SolidModel::SolidModel(Mesh mesh, std::shared_ptr<const Material> material, Form
   for (int n = 0; n < mesh_.num_nodes(); ++n) rest_positions_.segment<3>(3 * n) = mesh_.nodes[n];
 
   geometry_.reserve(mesh_.elements.size());
+  rest_coords_.reserve(mesh_.elements.size());
   for (int e = 0; e < mesh_.num_elements(); ++e) {
     try {
-      geometry_.push_back(make_element_geometry(element_coords(e, rest_positions_)));
+      rest_coords_.push_back(element_coords(e, rest_positions_));
+      geometry_.push_back(make_element_geometry(rest_coords_.back()));
     } catch (const std::invalid_argument& err) {
       throw std::invalid_argument("element " + std::to_string(e) + ": " + err.what());
     }
@@ -53,40 +56,129 @@ AssemblyStatus SolidModel::assemble(const Vector& u, Vector& internal_force,
   return add_weighted(u, {}, internal_force, stiffness, strain_energy);
 }
 
+namespace {
+// Elements evaluated in parallel before their results are summed in element order: bounds the
+// workspace (forces and, for the tangent, 24 x 24 matrices) to a few MB at any mesh size.
+constexpr int kBlockElements = 1024;
+}  // namespace
+
+// Results of one block of elements, filled in parallel and summed by the calling thread.
+struct SolidModel::Workspace {
+  std::mutex mutex;  // one assembly at a time uses it
+  std::vector<int> elements;
+  std::vector<ElementVector> force;
+  std::vector<ElementMatrix> stiffness;
+  std::vector<double> energy, min_J;
+  std::vector<char> ok;
+};
+
+SolidModel::~SolidModel() = default;
+
+void SolidModel::set_threads(int threads) {
+  if (threads < 1) {
+    throw std::invalid_argument("solid model: threads must be at least 1, got " +
+                                std::to_string(threads));
+  }
+  if (threads == this->threads()) return;
+  pool_ = threads > 1 ? std::make_unique<WorkerPool>(threads) : nullptr;
+  workspace_ = threads > 1 ? std::make_unique<Workspace>() : nullptr;
+}
+
+hex8::ElementCoords SolidModel::current_coords(int e, const Vector& u) const {
+  hex8::ElementCoords x = rest_coords_[e];
+  const Hex8& nodes = mesh_.elements[e];
+  for (int a = 0; a < 8; ++a) x.row(a) += u.segment<3>(3 * nodes[a]).transpose();
+  return x;
+}
+
+void SolidModel::scatter(int e, double w, const ElementVector& force,
+                         const ElementMatrix* stiffness, Vector& internal_force,
+                         SymmetricMatrix* K) const {
+  const Hex8& nodes = mesh_.elements[e];
+  for (int a = 0; a < 8; ++a)
+    internal_force.segment<3>(3 * nodes[a]) += w * force.segment<3>(3 * a);
+  if (stiffness == nullptr) return;
+  double* values = K->values().data();
+  const auto& map = element_scatter_[e];
+  for (int j = 0; j < 24; ++j) {  // column-major: K(i, j) runs down a contiguous column
+    for (int i = 0; i < 24; ++i) {
+      const int k = map[24 * i + j];
+      if (k >= 0) values[k] += w * (*stiffness)(i, j);
+    }
+  }
+}
+
 AssemblyStatus SolidModel::add_weighted(const Vector& u, const std::vector<double>& weights,
                                         Vector& internal_force, SymmetricMatrix* stiffness,
                                         double* strain_energy) const {
   if (!weights.empty() && static_cast<int>(weights.size()) != mesh_.num_elements()) {
     throw std::invalid_argument("element weights: one per element expected");
   }
+  const auto weight = [&](int e) { return weights.empty() ? 1.0 : weights[e]; };
+  const bool want_stiffness = stiffness != nullptr;
   AssemblyStatus status;
   status.min_J = std::numeric_limits<double>::infinity();
-  const Vector x = rest_positions_ + u;
-  ElementResponse r;
-  for (int e = 0; e < mesh_.num_elements(); ++e) {
-    const double w = weights.empty() ? 1.0 : weights[e];
-    if (w == 0.0) continue;
-    const bool ok = evaluate_element(geometry_[e], element_coords(e, x), *material_, formulation_,
-                                     stiffness != nullptr, r);
-    status.min_J = std::min(status.min_J, r.min_J);
-    if (!ok) {
-      status.ok = false;
-      status.inverted_element = e;
-      return status;
-    }
-    if (strain_energy) *strain_energy += w * r.energy;
-    const Hex8& nodes = mesh_.elements[e];
-    for (int a = 0; a < 8; ++a)
-      internal_force.segment<3>(3 * nodes[a]) += w * r.force.segment<3>(3 * a);
-    if (stiffness) {
-      std::vector<double>& values = stiffness->values();
-      const auto& scatter = element_scatter_[e];
-      for (int i = 0; i < 24; ++i) {
-        for (int j = 0; j < 24; ++j) {
-          const int k = scatter[24 * i + j];
-          if (k >= 0) values[k] += w * r.stiffness(i, j);
-        }
+
+  if (!pool_) {
+    ElementResponse r;
+    for (int e = 0; e < mesh_.num_elements(); ++e) {
+      const double w = weight(e);
+      if (w == 0.0) continue;
+      const bool ok = evaluate_element(geometry_[e], current_coords(e, u), *material_, formulation_,
+                                       want_stiffness, r);
+      status.min_J = std::min(status.min_J, r.min_J);
+      if (!ok) {
+        status.ok = false;
+        status.inverted_element = e;
+        return status;
       }
+      if (strain_energy) *strain_energy += w * r.energy;
+      scatter(e, w, r.force, want_stiffness ? &r.stiffness : nullptr, internal_force, stiffness);
+    }
+    return status;
+  }
+
+  // Several threads: each block's elements are evaluated in parallel into the workspace, then
+  // summed here in element order, exactly as the loop above sums them.
+  Workspace& ws = *workspace_;
+  const std::lock_guard lock(ws.mutex);
+  ws.elements.clear();
+  for (int e = 0; e < mesh_.num_elements(); ++e)
+    if (weight(e) != 0.0) ws.elements.push_back(e);
+  const int total = static_cast<int>(ws.elements.size());
+  const int block = std::min(total, kBlockElements);
+  ws.force.resize(block);
+  ws.energy.resize(block);
+  ws.min_J.resize(block);
+  ws.ok.resize(block);
+  if (want_stiffness) ws.stiffness.resize(block);
+  for (int first = 0; first < total; first += block) {
+    const int count = std::min(block, total - first);
+    pool_->parallel_for(count, [&](int begin, int end) {
+      ElementResponse r;
+      for (int i = begin; i < end; ++i) {
+        const int e = ws.elements[first + i];
+        ws.ok[i] = evaluate_element(geometry_[e], current_coords(e, u), *material_, formulation_,
+                                    want_stiffness, r);
+        ws.min_J[i] = r.min_J;
+        if (!ws.ok[i]) continue;
+        ws.energy[i] = r.energy;
+        ws.force[i] = r.force;
+        if (want_stiffness) ws.stiffness[i] = r.stiffness;
+      }
+    });
+    for (int i = 0; i < count; ++i) {
+      const int e = ws.elements[first + i];
+      const double w = weight(e);
+      status.min_J = std::min(status.min_J, ws.min_J[i]);
+      if (!ws.ok[i]) {
+        status.ok = false;
+        status.inverted_element = e;
+        return status;
+      }
+      if (strain_energy) *strain_energy += w * ws.energy[i];
+      scatter(e, w, ws.force[i], want_stiffness ? &ws.stiffness[i] : nullptr, internal_force,
+              stiffness);
     }
   }
   return status;
@@ -136,10 +228,9 @@ double SolidModel::total_mass() const {
 }
 
 double SolidModel::current_volume(const Vector& u) const {
-  const Vector x = rest_positions_ + u;
   double v = 0.0;
   for (int e = 0; e < mesh_.num_elements(); ++e) {
-    const hex8::ElementCoords xe = element_coords(e, x);
+    const hex8::ElementCoords xe = current_coords(e, u);
     for (int q = 0; q < 8; ++q) {
       v += geometry_[e].weight[q] * (xe.transpose() * geometry_[e].dN_dX[q]).determinant();
     }

@@ -9,6 +9,7 @@
 
 #include "fem/assembly/dof_map.hpp"
 #include "fem/assembly/sparse_matrix.hpp"
+#include "fem/assembly/worker_pool.hpp"
 #include "fem/element/hex8_element.hpp"
 #include "fem/material/material.hpp"
 #include "fem/mesh/mesh.hpp"
@@ -26,6 +27,16 @@ class SolidModel {
   SolidModel(Mesh mesh, std::shared_ptr<const Material> material, Formulation formulation,
              double density, const std::vector<PrescribedDof>& prescribed,
              const std::vector<std::pair<int, int>>& extra_node_pairs = {});
+  ~SolidModel();
+  SolidModel(const SolidModel&) = delete;
+  SolidModel& operator=(const SolidModel&) = delete;
+
+  // Threads for the element loops (residual and tangent), the calling one included; 1 (the
+  // default) runs them on the calling thread alone. The elements' results are summed in element
+  // order whatever the count, so every count gives bit-for-bit the same force and tangent.
+  // Throws std::invalid_argument for threads < 1.
+  void set_threads(int threads);
+  int threads() const { return pool_ ? pool_->threads() : 1; }
 
   const Mesh& mesh() const { return mesh_; }
   const Material& material() const { return *material_; }
@@ -45,6 +56,7 @@ class SolidModel {
   // Adds the internal force, tangent and energy of the elements scaled by per-element weights
   // (one per element; empty: all 1; elements of weight 0 are skipped) to what the arguments
   // hold: for energies that are multiples of the material's, such as active muscle stiffening.
+  // Safe to call from several threads at once (each call has its own workspace or waits for it).
   AssemblyStatus add_weighted(const Vector& u, const std::vector<double>& weights,
                               Vector& internal_force, SymmetricMatrix* stiffness,
                               double* strain_energy = nullptr) const;
@@ -59,7 +71,13 @@ class SolidModel {
   double current_volume(const Vector& u) const;
 
  private:
+  struct Workspace;
   hex8::ElementCoords element_coords(int e, const Vector& positions) const;
+  // The element's current nodal positions, rest (precomputed) plus displacement.
+  hex8::ElementCoords current_coords(int e, const Vector& u) const;
+  // Adds w times one element's force and tangent (when K is given) to the global arrays.
+  void scatter(int e, double w, const ElementVector& force, const ElementMatrix* stiffness,
+               Vector& internal_force, SymmetricMatrix* K) const;
 
   Mesh mesh_;
   std::shared_ptr<const Material> material_;
@@ -68,8 +86,11 @@ class SolidModel {
   DofMap dofs_;
   Vector rest_positions_;
   std::vector<ElementGeometry> geometry_;
+  std::vector<hex8::ElementCoords> rest_coords_;  // per element, gathered once
   std::shared_ptr<const SparsityPattern> pattern_;
   std::vector<std::array<int, 24 * 24>> element_scatter_;
+  std::unique_ptr<WorkerPool> pool_;  // null: one thread
+  std::unique_ptr<Workspace> workspace_;
 };
 
 }  // namespace tongue::fem

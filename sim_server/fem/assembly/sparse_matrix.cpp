@@ -86,16 +86,23 @@ void SymmetricMatrix::set_zero() {
 }
 
 Vector SymmetricMatrix::multiply(const Vector& x) const {
+  Vector y = Vector::Zero(pattern_->size);
+  multiply_add(x, y);
+  return y;
+}
+
+void SymmetricMatrix::multiply_add(const Vector& x, Vector& y) const {
   const SparsityPattern& p = *pattern_;
-  Vector y = Vector::Zero(p.size);
   for (int col = 0; col < p.size; ++col) {
+    const double x_col = x[col];
+    double y_col = 0.0;  // the lower triangle's contributions to y[col], summed in a register
     for (int k = p.column_start[col]; k < p.column_start[col + 1]; ++k) {
       const int row = p.row_index[k];
-      y[row] += values_[k] * x[col];
-      if (row != col) y[col] += values_[k] * x[row];
+      y[row] += values_[k] * x_col;
+      if (row != col) y_col += values_[k] * x[row];
     }
+    y[col] += y_col;
   }
-  return y;
 }
 
 double SymmetricMatrix::diagonal(int i) const {

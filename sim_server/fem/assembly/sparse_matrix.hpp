@@ -47,6 +47,8 @@ class SymmetricMatrix {
 
   // y = A x using both triangles.
   Vector multiply(const Vector& x) const;
+  // y += A x, into a vector of the right size (no allocation).
+  void multiply_add(const Vector& x, Vector& y) const;
   double diagonal(int i) const;
   // this = a * this + b * other (same pattern)
   void scale_and_add(double a, double b, const SymmetricMatrix& other);

@@ -2,6 +2,7 @@
 
 #include <Eigen/LU>
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <stdexcept>
 
@@ -51,17 +52,81 @@ void add_stress_force(const hex8::ShapeGradients& G, const Mat3& P, double w, El
   for (int a = 0; a < 8; ++a) f.segment<3>(3 * a) += w * nodal.row(a).transpose();
 }
 
-}  // namespace
+// adj(F) = det(F) F^{-1}, the transposed cofactor matrix, written out.
+Mat3 adjugate(const Mat3& F) {
+  Mat3 a;
+  a(0, 0) = F(1, 1) * F(2, 2) - F(1, 2) * F(2, 1);
+  a(0, 1) = F(0, 2) * F(2, 1) - F(0, 1) * F(2, 2);
+  a(0, 2) = F(0, 1) * F(1, 2) - F(0, 2) * F(1, 1);
+  a(1, 0) = F(1, 2) * F(2, 0) - F(1, 0) * F(2, 2);
+  a(1, 1) = F(0, 0) * F(2, 2) - F(0, 2) * F(2, 0);
+  a(1, 2) = F(0, 2) * F(1, 0) - F(0, 0) * F(1, 2);
+  a(2, 0) = F(1, 0) * F(2, 1) - F(1, 1) * F(2, 0);
+  a(2, 1) = F(0, 1) * F(2, 0) - F(0, 0) * F(2, 1);
+  a(2, 2) = F(0, 0) * F(1, 1) - F(0, 1) * F(1, 0);
+  return a;
+}
 
-bool evaluate_element(const ElementGeometry& geometry, const hex8::ElementCoords& x,
-                      const Material& material, Formulation formulation, bool want_stiffness,
-                      ElementResponse& r) {
-  const UncoupledMaterial* uncoupled = material.as_uncoupled();
-  const bool mean_dilatation = formulation == Formulation::mean_dilatation;
-  if (mean_dilatation && uncoupled == nullptr) {
-    throw std::invalid_argument("mean dilatation needs a material split into W_iso + U(J); '" +
-                                material.name() + "' is not");
+// The residual path: force and energy only. Two passes over the Gauss points: the first finds
+// F, J and (mean dilatation) the element's volume v, hence the pressure factor U'(v / V); the
+// second adds P^T = P_iso^T + U' J F^{-1} = P_iso^T + U' adj(F) per point, so the volumetric
+// force needs no separate dv/dx (d(w J)/dx_a = w adj(F)^T dN_a/dX, Bonet & Wood 2008 sec. 9.4).
+bool element_force(const ElementGeometry& geometry, const hex8::ElementCoords& x,
+                   const Material& material, const UncoupledMaterial* uncoupled,
+                   bool mean_dilatation, ElementResponse& r) {
+  std::array<Mat3, 8> F;
+  std::array<Mat3, 8> adj;
+  std::array<double, 8> J;
+  double v = 0.0;
+  double min_J = std::numeric_limits<double>::infinity();
+  for (int q = 0; q < 8; ++q) {
+    F[q].noalias() = x.transpose() * geometry.dN_dX[q];
+    adj[q] = adjugate(F[q]);
+    J[q] = F[q].row(0).dot(adj[q].col(0));
+    min_J = std::min(min_J, J[q]);
+    v += geometry.weight[q] * J[q];
   }
+  r.min_J = min_J;
+  if (!(min_J > 0.0)) return false;
+
+  double energy = 0.0;
+  double pressure = 0.0;  // U'(J_bar) for mean dilatation
+  if (mean_dilatation) {
+    const VolumetricResponse U = uncoupled->volumetric(v / geometry.volume);
+    energy += geometry.volume * U.energy;
+    pressure = U.first;
+  }
+  Eigen::Matrix<double, 8, 3> f = Eigen::Matrix<double, 8, 3>::Zero();  // row a: force on node a
+  for (int q = 0; q < 8; ++q) {
+    const double w = geometry.weight[q];
+    Mat3 Pt;  // P^T
+    if (uncoupled != nullptr) {
+      Mat3 P;
+      energy += w * uncoupled->isochoric_stress(F[q], J[q], adj[q], P);
+      double p = pressure;
+      if (!mean_dilatation) {
+        const VolumetricResponse U = uncoupled->volumetric(J[q]);
+        energy += w * U.energy;
+        p = U.first;
+      }
+      Pt.noalias() = P.transpose() + p * adj[q];
+    } else {
+      const PointResponse point = material.response(F[q], false);
+      energy += w * point.energy;
+      Pt = point.stress.transpose();
+    }
+    f.noalias() += geometry.dN_dX[q] * (w * Pt);  // f_ai += w dN_a/dX_J P_iJ
+  }
+  r.energy = energy;
+  for (int a = 0; a < 8; ++a) r.force.segment<3>(3 * a) = f.row(a).transpose();
+  return true;
+}
+
+// The tangent path: force, energy and stiffness through the material's full response.
+bool element_with_tangent(const ElementGeometry& geometry, const hex8::ElementCoords& x,
+                          const Material& material, const UncoupledMaterial* uncoupled,
+                          bool mean_dilatation, ElementResponse& r) {
+  const bool want_stiffness = true;
   r.energy = 0.0;
   r.force.setZero();
   if (want_stiffness) r.stiffness.setZero();
@@ -114,6 +179,21 @@ bool evaluate_element(const ElementGeometry& geometry, const hex8::ElementCoords
     if (want_stiffness) r.stiffness += (U.second / V) * (dv * dv.transpose()) + U.first * d2v;
   }
   return true;
+}
+
+}  // namespace
+
+bool evaluate_element(const ElementGeometry& geometry, const hex8::ElementCoords& x,
+                      const Material& material, Formulation formulation, bool want_stiffness,
+                      ElementResponse& r) {
+  const UncoupledMaterial* uncoupled = material.as_uncoupled();
+  const bool mean_dilatation = formulation == Formulation::mean_dilatation;
+  if (mean_dilatation && uncoupled == nullptr) {
+    throw std::invalid_argument("mean dilatation needs a material split into W_iso + U(J); '" +
+                                material.name() + "' is not");
+  }
+  return want_stiffness ? element_with_tangent(geometry, x, material, uncoupled, mean_dilatation, r)
+                        : element_force(geometry, x, material, uncoupled, mean_dilatation, r);
 }
 
 Eigen::Matrix<double, 8, 8> element_mass_pattern(const hex8::ElementCoords& X) {

@@ -19,10 +19,13 @@ class MechanicalSystem {
   const std::vector<std::shared_ptr<const ForceContribution>>& loads() const { return loads_; }
   const SolidModel& solid() const { return *solid_; }
 
-  // r = f_int(u) - load_factor f_ext(u) over all dofs (the entries at prescribed dofs are the
-  // negated reactions); when stiffness is given, dr/du over the free dofs.
+  // r = f_int(u) - load_factor f_ext(u) over all dofs (loads that scale the solid's elements
+  // are folded into one element pass, ForceContribution::add_element_weights) (the entries at
+  // prescribed dofs are the negated reactions); when stiffness is given, dr/du over the free dofs.
+  // When load_norm is given it receives ||load_factor f_ext(u)|| over the free dofs [N], a scale
+  // for r.
   AssemblyStatus residual(const Vector& u, double load_factor, Vector& r,
-                          SymmetricMatrix* stiffness) const;
+                          SymmetricMatrix* stiffness, double* load_norm = nullptr) const;
   // f_ext(u) over all dofs.
   Vector external_force(const Vector& u) const;
 

@@ -62,11 +62,15 @@ class NewmarkIntegrator {
  private:
   class StepProblem;
   bool advance(double dt, StepReport& report, int depth);
+  // c0 M + c1 C for this dt, formed again only when dt changes.
+  const SymmetricMatrix& dynamic_matrix(double dt);
 
   const MechanicalSystem& system_;
   DynamicSettings settings_;
   SymmetricMatrix mass_;
   std::optional<SymmetricMatrix> damping_;
+  std::optional<SymmetricMatrix> dynamic_matrix_;
+  double dynamic_matrix_dt_ = 0.0;
   NewtonSolver newton_;
   Vector u_, v_, a_;  // full vectors
   double t_ = 0.0;

@@ -20,6 +20,7 @@ class StaticProblem : public NonlinearProblem {
   bool residual_and_tangent(const Vector& x, Vector& r, SymmetricMatrix& K) override {
     return evaluate(x, r, &K);
   }
+  double force_scale() const override { return load_norm_; }
   const Vector& full(const Vector& x) {
     system_.solid().dofs().scatter_free(x, u_);
     return u_;
@@ -28,13 +29,14 @@ class StaticProblem : public NonlinearProblem {
  private:
   bool evaluate(const Vector& x, Vector& r, SymmetricMatrix* K) {
     Vector r_full;
-    if (!system_.residual(full(x), load_factor_, r_full, K).ok) return false;
+    if (!system_.residual(full(x), load_factor_, r_full, K, &load_norm_).ok) return false;
     r = system_.solid().dofs().gather_free(r_full);
     return true;
   }
   const MechanicalSystem& system_;
   Vector u_;
   double load_factor_;
+  double load_norm_ = 0.0;
 };
 
 }  // namespace

@@ -47,7 +47,6 @@ double corner_sign_factor(int corner) {
   return -(s[0] * s[1] * s[2]) / 8.0;
 }
 
-
 // Mean edge length along each reference direction: the 4 edges along xi_k join the corners with
 // s_k = -1 to their neighbour along k.
 Vec3 edge_scales(const hex8::ElementCoords& X) {
@@ -317,7 +316,8 @@ RegularizationReport regularize(Mesh& mesh, const RegularizationSettings& settin
     }
     fixed[n] = 1;
   }
-  for (int e = 0; e < mesh.num_elements(); ++e) (void)element_coords(mesh, e);  // node indices valid
+  for (int e = 0; e < mesh.num_elements(); ++e)
+    (void)element_coords(mesh, e);  // node indices valid
 
   RegularizationReport report;
   report.irregular_before = static_cast<int>(irregular_elements(mesh).size());

@@ -9,6 +9,7 @@
 #include "fem/element/hex8_element.hpp"
 #include "fem/material/material_factory.hpp"
 #include "support/finite_difference.hpp"
+#include "support/reference_hex8_element.hpp"
 
 namespace tongue::fem {
 namespace {
@@ -97,6 +98,30 @@ TEST_P(ElementDerivatives, ForceAndTangentMatchFiniteDifferences) {
   EXPECT_LT(force_error, 1e-6);
   EXPECT_LT(tangent_error, 1e-6);
   EXPECT_LT((r.stiffness - r.stiffness.transpose()).norm() / r.stiffness.norm(), 1e-12);
+}
+
+// The residual path (lean stress, pressure folded into the stress, no tangent) and the tangent
+// path give what the straightforward evaluation through Material::response gave before them.
+TEST_P(ElementDerivatives, FastKernelsReproduceTheStraightforwardEvaluation) {
+  const Case c = GetParam();
+  const auto material = make(c.material, c.nu);
+  const hex8::ElementCoords X = reference_element();
+  const ElementGeometry geometry = make_element_geometry(X);
+  const hex8::ElementCoords x = deformed(X);
+
+  ElementResponse expected, force_only, with_tangent;
+  ASSERT_TRUE(
+      testing::reference_evaluate_element(geometry, x, *material, c.formulation, true, expected));
+  ASSERT_TRUE(evaluate_element(geometry, x, *material, c.formulation, false, force_only));
+  ASSERT_TRUE(evaluate_element(geometry, x, *material, c.formulation, true, with_tangent));
+  // The same sums in another order: differences are round-off, ~1e-15 of the magnitudes; 1e-12
+  // leaves room for the cancellation in the nearly incompressible cases (K / mu up to 5e3).
+  const double tol = 1e-12;
+  EXPECT_LT((force_only.force - expected.force).norm(), tol * expected.force.norm());
+  EXPECT_NEAR(force_only.energy, expected.energy, tol * std::abs(expected.energy));
+  EXPECT_DOUBLE_EQ(force_only.min_J, expected.min_J);
+  EXPECT_LT((with_tangent.force - expected.force).norm(), tol * expected.force.norm());
+  EXPECT_LT((with_tangent.stiffness - expected.stiffness).norm(), tol * expected.stiffness.norm());
 }
 
 std::vector<Case> all_cases() {

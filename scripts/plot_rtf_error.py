@@ -1,0 +1,77 @@
+#!/usr/bin/python3
+"""Draws the real-time factor against the RMS nodal error of rtf_error_benchmark's CSV.
+
+Usage: /usr/bin/python3 scripts/plot_rtf_error.py logs/rtf_error.csv logs/rtf_error.png
+
+Log-log axes; one marker per setting: colour by time step, shape by solver policy and material,
+hollow for 2 threads. The dashed lines are the targets: real time (RTF = 1) and 0.1 mm RMS.
+"""
+import csv
+import sys
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+
+def read_rows(path):
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        raise SystemExit(f"{path}: no rows")
+    needed = {"dt_ms", "tolerance", "newton", "material", "threads", "rtf", "rms_mm"}
+    missing = needed - set(rows[0])
+    if missing:
+        raise SystemExit(f"{path}: missing columns {sorted(missing)}")
+    return rows
+
+
+def main():
+    if len(sys.argv) != 3:
+        raise SystemExit(__doc__)
+    rows = read_rows(sys.argv[1])
+    dts = sorted({float(r["dt_ms"]) for r in rows})
+    colours = plt.cm.viridis([i / max(1, len(dts) - 1) for i in range(len(dts))])
+    colour_of = dict(zip(dts, colours))
+    fig, ax = plt.subplots(figsize=(8, 5.5))
+    seen = set()
+    for r in rows:
+        rms = max(float(r["rms_mm"]), 1e-6)  # mm; a zero error cannot sit on a log axis
+        rtf = float(r["rtf"])
+        dt = float(r["dt_ms"])
+        if r["material"] != "mooney_rivlin5":
+            marker, kind = ("s" if r["material"] == "neo_hookean" else "D"), r["material"]
+        elif r["newton"] == "full":
+            marker, kind = "^", "full Newton"
+        else:
+            marker, kind = "o", "factor reuse"
+        hollow = r["threads"] == "2"
+        label = None
+        key = (kind, hollow)
+        if key not in seen:
+            seen.add(key)
+            label = kind + (", 2 threads" if hollow else "")
+        ax.scatter(rms, rtf, marker=marker, s=60, label=label,
+                   facecolors="none" if hollow else colour_of[dt],
+                   edgecolors=colour_of[dt], linewidths=1.5)
+        if r["tolerance"] != "default":
+            ax.annotate(r["tolerance"], (rms, rtf), textcoords="offset points", xytext=(5, 4),
+                        fontsize=7)
+    for dt in dts:
+        ax.scatter([], [], color=colour_of[dt], marker="o", label=f"dt {dt:g} ms")
+    ax.axhline(1.0, color="grey", linestyle="--", linewidth=1)
+    ax.axvline(0.1, color="grey", linestyle="--", linewidth=1)
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    ax.set_xlabel("RMS nodal error against the reference [mm]")
+    ax.set_ylabel("real-time factor [simulated s / wall s]")
+    ax.set_title("Default tongue, SG 3 N 120 ms + 200 ms relaxation (mooney_rivlin5 reference)")
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=8, loc="best")
+    fig.tight_layout()
+    fig.savefig(sys.argv[2], dpi=120)
+
+
+if __name__ == "__main__":
+    main()
