@@ -15,7 +15,7 @@ CommandLine parse(std::vector<const char*> args, const std::vector<std::string>&
 
 TEST(CommandLine, DefaultsAreTheDocumentedOnes) {
   const CommandLine c = parse({"--plan", "p.yaml"});
-  EXPECT_EQ(c.common.lcm_url, "udpm://239.255.76.67:7667?ttl=0");
+  EXPECT_EQ(c.common.lcm_url, "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304");
   EXPECT_EQ(c.common.prefix, "TONGUE_");
   EXPECT_EQ(c.common.mode, LoopMode::lockstep);
   EXPECT_FALSE(c.common.max_steps.has_value());
