@@ -183,6 +183,7 @@ int run(int argc, char** argv) {
     else
       throw std::invalid_argument("unknown option '" + a + "'");
   }
+  g_thread_clock = threads == 1;
   const scene::Scene base =
       scene::read_scene(std::string(TONGUE_SOURCE_DIR) + "/scenes/tongue_sg_3n.yaml");
   std::vector<Row> rows;
