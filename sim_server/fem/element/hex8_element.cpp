@@ -33,22 +33,33 @@ ElementGeometry make_element_geometry(const hex8::ElementCoords& X) {
 
 namespace {
 
-// Adds w * B^T A B to K, where B maps nodal positions to F (B_{iJ, 3a+k} = delta_ik dN_a/dX_J):
-// K_{3a+i, 3b+k} += w sum_{J,L} dN_a/dX_J A_{iJ,kL} dN_b/dX_L.
+// Adds w * B^T A B to the node blocks (a, b), b >= a, of K, where B maps nodal positions to F
+// (B_{iJ, 3a+k} = delta_ik dN_a/dX_J):
+// K_{3a+i, 3b+k} += w sum_{J,L} dN_a/dX_J A_{iJ,kL} dN_b/dX_L. The blocks below the diagonal
+// follow by symmetry (mirror_lower_blocks).
 void add_material_stiffness(const hex8::ShapeGradients& G, const Mat9& A, double w,
                             ElementMatrix& K) {
-  Eigen::Matrix<double, 9, 24> AB;
+  Eigen::Matrix<double, 9, 24> AB;  // column 3b + k: sum_L A_{., kL} dN_b/dX_L
   for (int b = 0; b < 8; ++b) {
     for (int k = 0; k < 3; ++k) {
       AB.col(3 * b + k) = A.col(k) * G(b, 0) + A.col(k + 3) * G(b, 1) + A.col(k + 6) * G(b, 2);
     }
   }
   for (int a = 0; a < 8; ++a) {
-    for (int i = 0; i < 3; ++i) {
-      K.row(3 * a + i).noalias() +=
-          w * (G(a, 0) * AB.row(i) + G(a, 1) * AB.row(i + 3) + G(a, 2) * AB.row(i + 6));
+    const double w0 = w * G(a, 0), w1 = w * G(a, 1), w2 = w * G(a, 2);
+    for (int b = a; b < 8; ++b) {
+      K.block<3, 3>(3 * a, 3 * b).noalias() += w0 * AB.block<3, 3>(0, 3 * b) +
+                                               w1 * AB.block<3, 3>(3, 3 * b) +
+                                               w2 * AB.block<3, 3>(6, 3 * b);
     }
   }
+}
+
+// Completes a symmetric K of which the node blocks (a, b), b >= a, are filled.
+void mirror_lower_blocks(ElementMatrix& K) {
+  for (int a = 1; a < 8; ++a)
+    for (int b = 0; b < a; ++b)
+      K.block<3, 3>(3 * a, 3 * b) = K.block<3, 3>(3 * b, 3 * a).transpose();
 }
 
 // Adds w * (G P^T) to the force: f_{3a+i} += w sum_J P_iJ dN_a/dX_J.
@@ -173,17 +184,16 @@ bool coupled_element_force(const ElementGeometry& geometry, const hex8::ElementC
 bool element_with_tangent(const ElementGeometry& geometry, const hex8::ElementCoords& x,
                           const Material& material, const UncoupledMaterial* uncoupled,
                           bool mean_dilatation, ElementResponse& r) {
-  const bool want_stiffness = true;
   r.energy = 0.0;
   r.force.setZero();
-  if (want_stiffness) r.stiffness.setZero();
+  r.stiffness.setZero();
   r.min_J = std::numeric_limits<double>::infinity();
 
   // Mean dilatation: current volume v = sum J w, its gradient dv/dx and Hessian d2v/dx2.
   double v = 0.0;
   ElementVector dv = ElementVector::Zero();
   ElementMatrix d2v;
-  if (mean_dilatation && want_stiffness) d2v.setZero();
+  if (mean_dilatation) d2v.setZero();
 
   for (int q = 0; q < 8; ++q) {
     const hex8::ShapeGradients& G = geometry.dN_dX[q];
@@ -193,11 +203,11 @@ bool element_with_tangent(const ElementGeometry& geometry, const hex8::ElementCo
     r.min_J = std::min(r.min_J, J);
     if (!(J > 0.0)) return false;
 
-    const PointResponse point = mean_dilatation ? uncoupled->isochoric_response(F, want_stiffness)
-                                                : material.response(F, want_stiffness);
+    const PointResponse point =
+        mean_dilatation ? uncoupled->isochoric_response(F, true) : material.response(F, true);
     r.energy += w * point.energy;
     add_stress_force(G, point.stress, w, r.force);
-    if (want_stiffness) add_material_stiffness(G, point.tangent, w, r.stiffness);
+    add_material_stiffness(G, point.tangent, w, r.stiffness);
 
     if (mean_dilatation) {
       // dJ/dx_{ai} = J g_{ai} and d2J/dx_{ai}dx_{bk} = J (g_ai g_bk - g_ak g_bi), with
@@ -207,11 +217,14 @@ bool element_with_tangent(const ElementGeometry& geometry, const hex8::ElementCo
       const Eigen::Map<const ElementVector> g_flat(g_t.data());
       v += w * J;
       dv += (w * J) * g_flat;
-      if (want_stiffness) {
+      {
+        // Blocks (a, b), b > a only: the diagonal blocks vanish, the lower ones are the upper
+        // ones transposed (mirror_lower_blocks).
         for (int a = 0; a < 8; ++a) {
-          for (int b = 0; b < 8; ++b) {
-            const Eigen::RowVector3d ga = g.row(a), gb = g.row(b);
-            d2v.block<3, 3>(3 * a, 3 * b) += (w * J) * (ga.transpose() * gb - gb.transpose() * ga);
+          const Vec3 ga = (w * J) * g.row(a).transpose();
+          for (int b = a + 1; b < 8; ++b) {
+            const Vec3 gb = g.row(b).transpose();
+            d2v.block<3, 3>(3 * a, 3 * b).noalias() += ga * gb.transpose() - gb * ga.transpose();
           }
         }
       }
@@ -223,8 +236,9 @@ bool element_with_tangent(const ElementGeometry& geometry, const hex8::ElementCo
     const VolumetricResponse U = uncoupled->volumetric(v / V);
     r.energy += V * U.energy;
     r.force += U.first * dv;
-    if (want_stiffness) r.stiffness += (U.second / V) * (dv * dv.transpose()) + U.first * d2v;
+    r.stiffness += (U.second / V) * (dv * dv.transpose()) + U.first * d2v;
   }
+  mirror_lower_blocks(r.stiffness);
   return true;
 }
 
