@@ -217,15 +217,13 @@ bool element_with_tangent(const ElementGeometry& geometry, const hex8::ElementCo
       const Eigen::Map<const ElementVector> g_flat(g_t.data());
       v += w * J;
       dv += (w * J) * g_flat;
-      {
-        // Blocks (a, b), b > a only: the diagonal blocks vanish, the lower ones are the upper
-        // ones transposed (mirror_lower_blocks).
-        for (int a = 0; a < 8; ++a) {
-          const Vec3 ga = (w * J) * g.row(a).transpose();
-          for (int b = a + 1; b < 8; ++b) {
-            const Vec3 gb = g.row(b).transpose();
-            d2v.block<3, 3>(3 * a, 3 * b).noalias() += ga * gb.transpose() - gb * ga.transpose();
-          }
+      // Blocks (a, b), b > a only: the diagonal blocks vanish, the lower ones are the upper ones
+      // transposed (mirror_lower_blocks).
+      for (int a = 0; a < 8; ++a) {
+        const Vec3 ga = (w * J) * g.row(a).transpose();
+        for (int b = a + 1; b < 8; ++b) {
+          const Vec3 gb = g.row(b).transpose();
+          d2v.block<3, 3>(3 * a, 3 * b).noalias() += ga * gb.transpose() - gb * ga.transpose();
         }
       }
     }
