@@ -231,7 +231,7 @@ TEST(NewtonSolver, QuasiNewtonUpdatesSpeedUpAReusedFactor) {
   SpringChain plain_problem, bfgs_problem;
   NewtonSettings plain = tight();
   plain.max_tangent_reuse = 100;
-  plain.reform_ratio = 1.0;  // never re-form for a slow rate: the factor from the start serves
+  plain.reform_ratio = 1.0;    // never re-form for a slow rate: the factor from the start serves
   plain.max_iterations = 200;  // a factor from x = 0 contracts slowly on the cubic springs
   NewtonSettings bfgs = plain;
   bfgs.quasi_newton_updates = 5;
