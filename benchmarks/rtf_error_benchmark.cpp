@@ -237,9 +237,9 @@ Row measure(const scene::Scene& base, const Setting& g, const Reference& ref, in
 
 std::vector<Setting> grid(bool quick) {
   std::vector<Setting> g;
-  for (double dt : {0.5e-3, 1e-3, 2e-3, 4e-3, 10e-3}) g.push_back({dt});
+  for (double dt : {0.5e-3, 1e-3, 2e-3, 4e-3, 8e-3, 10e-3}) g.push_back({dt});
   if (quick) return g;
-  for (double dt : {2e-3, 4e-3, 10e-3})
+  for (double dt : {2e-3, 4e-3, 8e-3, 10e-3})
     for (Tolerance t : {Tolerance::loose, Tolerance::tight}) g.push_back({dt, t});
   for (double dt : {2e-3, 4e-3, 10e-3}) g.push_back({dt, Tolerance::normal, true});
   for (const char* m : {"neo_hookean", "exponential"})

@@ -47,12 +47,12 @@ def main():
         else:
             marker, kind = "o", "factor reuse"
         hollow = r["threads"] == "2"
-        label = None
-        key = (kind, hollow)
-        if key not in seen:
+        key = (kind, marker, hollow)
+        if key not in seen:  # one grey legend entry per kind of marker
             seen.add(key)
-            label = kind + (", 2 threads" if hollow else "")
-        ax.scatter(rms, rtf, marker=marker, s=60, label=label,
+            ax.scatter([], [], marker=marker, s=60, label=kind + (", 2 threads" if hollow else ""),
+                       facecolors="none" if hollow else "grey", edgecolors="grey")
+        ax.scatter(rms, rtf, marker=marker, s=60,
                    facecolors="none" if hollow else colour_of[dt],
                    edgecolors=colour_of[dt], linewidths=1.5)
         if r["tolerance"] != "default":

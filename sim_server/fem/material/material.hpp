@@ -61,9 +61,6 @@ class UncoupledMaterial : public Material {
 
   // The isochoric part alone: W_iso, dW_iso/dF, d2W_iso/dF2.
   PointResponse isochoric_response(const Mat3& F, bool with_tangent = true) const;
-  // The residual path's lean form of the same: P_iso = dW_iso/dF into P, returning W_iso, with
-  // J = det F > 0 and adj = J F^{-1} supplied by the element, which needs them anyway.
-  double isochoric_stress(const Mat3& F, double J, const Mat3& adj, Mat3& P) const;
   // U(J) = K/2 (J - 1)^2 and its derivatives.
   VolumetricResponse volumetric(double J) const;
 

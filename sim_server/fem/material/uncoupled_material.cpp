@@ -167,26 +167,6 @@ PointResponse UncoupledMaterial::isochoric_response(const Mat3& F, bool with_tan
   return r;
 }
 
-double UncoupledMaterial::isochoric_stress(const Mat3& F, double J, const Mat3& adj,
-                                           Mat3& P) const {
-  // The stress of add_isochoric written out: with s1 = 2 W1 J^{-2/3}, s2 = 2 W2 J^{-4/3} and
-  // T = F^{-T} = adj^T / J,
-  //   P = (s1 + s2 I1) F - s2 F C - (s1 I1 / 3 + 2 s2 I2 / 3) T.
-  const Mat3 C = F.transpose() * F;
-  const double I1 = C.trace();
-  const double I2 = 0.5 * (I1 * I1 - C.squaredNorm());
-  const double cbrt_J = std::cbrt(J);
-  const double a1 = 1.0 / (cbrt_J * cbrt_J);  // J^{-2/3}
-  const double a2 = a1 * a1;                  // J^{-4/3}
-  const InvariantDerivatives w = isochoric_derivatives(a1 * I1, a2 * I2);
-  const double s1 = 2.0 * w.d1 * a1;
-  const double s2 = 2.0 * w.d2 * a2;
-  const double t = (s1 * I1 + 2.0 * s2 * I2) / (3.0 * J);
-  P.noalias() = (s1 + s2 * I1) * F - t * adj.transpose();
-  if (s2 != 0.0) P.noalias() -= s2 * (F * C);
-  return w.energy;
-}
-
 PointResponse UncoupledMaterial::response(const Mat3& F, bool with_tangent) const {
   const Kinematics k(F);
   if (!(k.J > 0.0)) return inverted_response();

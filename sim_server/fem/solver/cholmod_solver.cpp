@@ -1,6 +1,7 @@
 #include "fem/solver/cholmod_solver.hpp"
 
 #include <cholmod.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <chrono>
@@ -31,6 +32,11 @@ CholmodSolver::CholmodSolver(std::shared_ptr<const SparsityPattern> pattern)
   // One BLAS thread: at the tongue's sizes the supernodes are small, and idle OpenBLAS threads
   // spinning between calls cost more than the second core gains (issue 6 measures this).
   openblas_set_num_threads(1);
+  // CHOLMOD opens OpenMP regions with a fixed team of 4 for small loops (clearing workspace),
+  // after which the idle team spins: on the tongue that made a factorization 18 ms instead of
+  // 13 ms on a busy 2-core machine. No nested-active levels makes every region run on the
+  // calling thread alone (the project's own threads are std::threads, not OpenMP).
+  omp_set_max_active_levels(0);
   cholmod_common& c = impl_->common;
   cholmod_start(&c);
   c.supernodal = CHOLMOD_SUPERNODAL;

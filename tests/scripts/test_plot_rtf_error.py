@@ -1,0 +1,46 @@
+"""plot_rtf_error.py draws a PNG from rtf_error_benchmark's CSV and rejects a CSV it cannot use.
+
+Usage: test_plot_rtf_error.py SCRIPT
+"""
+import os
+import subprocess
+import sys
+import tempfile
+
+HEADER = ("dt_ms,tolerance,newton,material,threads,steps,iterations,factorizations,wall_s,rtf,"
+          "rtf_cpu,rms_mm,worst_frame_rms_mm,max_mm\n")
+ROWS = [
+    "4,default,reuse,mooney_rivlin5,1,80,295,3,0.36,0.9,0.9,0.0426,0.133,0.58\n",
+    "4,loose,reuse,mooney_rivlin5,2,80,262,3,0.36,0.9,0.9,0.0426,0.133,0.58\n",
+    "10,default,full,mooney_rivlin5,1,32,68,68,3.0,0.1,0.1,0.109,0.31,1.34\n",
+    "4,default,reuse,neo_hookean,1,80,290,4,0.53,0.6,0.8,0.141,0.27,1.14\n",
+    "2,default,reuse,exponential,1,160,450,5,1.0,0.3,0.5,0.0767,0.13,0.36\n",
+]
+
+
+def run(script, *args):
+    return subprocess.run([sys.executable, script, *args], capture_output=True, text=True)
+
+
+def main():
+    script = sys.argv[1]
+    with tempfile.TemporaryDirectory() as d:
+        csv_path, png_path = os.path.join(d, "r.csv"), os.path.join(d, "r.png")
+        with open(csv_path, "w") as f:
+            f.write(HEADER + "".join(ROWS))
+        result = run(script, csv_path, png_path)
+        assert result.returncode == 0, result.stderr
+        with open(png_path, "rb") as f:
+            assert f.read(8) == b"\x89PNG\r\n\x1a\n", "not a PNG"
+        assert os.path.getsize(png_path) > 10000, "suspiciously small picture"
+
+        bad = os.path.join(d, "bad.csv")
+        with open(bad, "w") as f:
+            f.write("dt_ms,rtf\n4,0.9\n")
+        result = run(script, bad, os.path.join(d, "bad.png"))
+        assert result.returncode != 0
+        assert "bad.csv" in result.stderr and "missing columns" in result.stderr, result.stderr
+
+
+if __name__ == "__main__":
+    main()
