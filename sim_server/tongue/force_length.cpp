@@ -1,8 +1,7 @@
 #include "tongue/force_length.hpp"
 
-#include <cmath>
-#include <cstdio>
 #include <stdexcept>
+#include <string>
 
 namespace tongue::model {
 
@@ -30,14 +29,6 @@ double ActiveForceLength::slope(double lambda) const {
   if (constant_ || lambda >= 1.0 || lambda <= zero_force_length_) return 0.0;
   const double s = (lambda - zero_force_length_) / (1.0 - zero_force_length_);
   return 12.0 * s * (1.0 - s) * (1.0 - s) / (1.0 - zero_force_length_);
-}
-
-std::string ActiveForceLength::describe() const {
-  if (constant_) return "constant tension";
-  char text[96];
-  std::snprintf(text, sizeof text, "active force-length, zero force at %.3g of rest length",
-                zero_force_length_);
-  return text;
 }
 
 }  // namespace tongue::model

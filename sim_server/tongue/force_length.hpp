@@ -3,16 +3,19 @@
 // Julian 1966; Zajac 1989, fig. 3): a sarcomere's active tension falls as it shortens below its
 // optimal length, to zero near half of it, where the thick filaments butt against the Z-discs.
 // So a muscle cannot pull a piece of itself to zero length. Each fibre segment between two nodes
-// (or an origin and a node) is such a series of sarcomeres; its rest length (in the mesh at rest)
-// is taken as its optimal length, and its tension is T f(l / l_rest) with
-//   f(lambda) = 0 for lambda <= lambda_0,  s^2 (3 - 2 s) with s = (lambda - lambda_0) / (1 -
-//   lambda_0) for lambda_0 < lambda < 1,  1 for lambda >= 1:
-// the C1 cubic from zero force at lambda_0 (default 0.5, Zajac's generic curve) to the plateau
-// (our choice of shape: continuous force and tangent, so Newton keeps its quadratic rate). No
-// descending limb: a stretched segment keeps its full tension, as in the plain fibre model, and
-// its stiffness stays positive semidefinite (a descending limb's negative stiffness along the
-// fibre would compete with the soft tissue's, about 15 kPa).
-#include <string>
+// (or an origin and a node) stands for such a series of sarcomeres; its length in the mesh at
+// rest is taken as its optimal length, and its tension is T f(l / l_rest) with
+//   f(lambda) = 0                              for lambda <= lambda_0,
+//             = s^2 (6 - 8 s + 3 s^2)          for lambda_0 < lambda < 1,
+//                 s = (lambda - lambda_0) / (1 - lambda_0),
+//             = 1                              for lambda >= 1.
+// lambda_0 = 0.5 by default (Zajac's generic curve). The quartic is 1 - (1 - s)^3 (1 + 3 s):
+// continuous with its slope at both ends (C1, so Newton keeps its quadratic rate) and flat to
+// second order at the plateau; with lambda_0 = 0.5 it stays within 0.12 of Thelen's (2003)
+// Gaussian exp(-(lambda - 1)^2 / 0.45) rescaled to vanish at lambda_0. Our choices: the shape,
+// and no descending limb: a stretched segment keeps its full tension, as in the plain fibre
+// model, and its stiffness stays positive semidefinite (a descending limb's negative stiffness
+// along the fibre would compete with the soft tissue's, about 15 kPa).
 
 namespace tongue::model {
 
@@ -30,7 +33,6 @@ class ActiveForceLength {
 
   double value(double lambda) const;  // f(lambda) in [0, 1]
   double slope(double lambda) const;  // df / dlambda >= 0
-  std::string describe() const;       // for logs: "constant tension" or the lambda_0
 
  private:
   ActiveForceLength(double zero_force_length, bool constant)
