@@ -1,4 +1,5 @@
 // stress_random_probe [--material NAME] [--seconds S] [--every K] [--watch STEP]
+//                     [--force-length LAMBDA0|constant]
 //
 // A diagnostic, not a test: replays the random activations of random_activation_test.cpp (same
 // seed, same sequence) on the built-in tongue without a bus, with the integrator sim_server
@@ -7,7 +8,8 @@
 // det J / det J0. At the step that fails (or at --watch STEP) it solves that step again with the
 // same Newton solver on a copy of the Newmark residual and prints, per iteration, the residual
 // norm [N], the nodes that carry most of it and the shortest segments, flagging a segment whose
-// direction reversed since the previous iterate.
+// direction reversed since the previous iterate. --force-length sets the scene's
+// muscle_force_length (default: the scene default); `constant` replays the plain fibre model.
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -38,6 +40,7 @@ struct Options {
   double seconds = 2.0;
   int every = 25;
   long watch = -1;
+  std::string force_length;  // the scene's muscle_force_length; empty: its default
 };
 
 Options parse(int argc, char** argv) {
@@ -52,6 +55,8 @@ Options parse(int argc, char** argv) {
       o.every = std::stoi(value);
     } else if (key == "--watch") {
       o.watch = std::stol(value);
+    } else if (key == "--force-length") {
+      o.force_length = value;
     } else {
       std::fprintf(stderr, "stress_random_probe: unknown option '%s'\n", key.c_str());
       std::exit(1);
@@ -248,8 +253,9 @@ void dissect(const Probe& probe, const fem::NewmarkIntegrator& integrator,
 }
 
 int run(const Options& o) {
-  const std::string text = testing::tongue_scene_head(0.49, o.material) +
-                           "analysis: {type: dynamic, settle: true, duration: 1, dt: 0.004}\n";
+  std::string text = testing::tongue_scene_head(0.49, o.material) +
+                     "analysis: {type: dynamic, settle: true, duration: 1, dt: 0.004}\n";
+  if (!o.force_length.empty()) text += "muscle_force_length: " + o.force_length + "\n";
   Probe probe{scene::build_scene(scene::parse_scene(text, ".", "<probe scene>")), {}, {}, {}};
   auto& built = probe.built;
   const Vector& rest = built.solid->rest_positions();
