@@ -300,10 +300,15 @@ int run(const Options& o) {
     if (!r.converged) {
       std::printf("step %ld FAILED: %s\n", k, r.message.c_str());
       const int s = probe.shortest(integrator.displacement(), 1)[0];
-      std::printf("at the last accepted state: shortest %s at %.3f of rest, det J/J0 min %.3f\n",
-                  probe.describe(probe.segments[s]).c_str(),
-                  probe.ratio(s, integrator.displacement()),
-                  probe.min_jacobian(integrator.displacement()));
+      const Segment& worst = probe.segments[s];
+      const model::Fibre& fibre = built.muscles->muscles()[worst.muscle].fibres[worst.fibre];
+      std::printf(
+          "at the last accepted state: shortest %s at %.3f of rest (its fibre at %.3f of rest), "
+          "det J/J0 min %.3f\n",
+          probe.describe(worst).c_str(), probe.ratio(s, integrator.displacement()),
+          model::fibre_length(fibre, probe.positions(integrator.displacement())) /
+              model::fibre_length(fibre, rest),
+          probe.min_jacobian(integrator.displacement()));
       std::printf("activations:");
       for (int m = 0; m < built.muscles->num_muscles(); ++m)
         std::printf(" %s %.2f", built.muscles->muscles()[m].name.c_str(), levels[m]);
