@@ -53,6 +53,11 @@
 //                                  # tissue over resting tissue, >= 1 (1: off); default 110/15
 //                                  # (Gerard et al. 2003 sec. III.2: 15 kPa at rest, 110 kPa
 //                                  # fully contracted), linear in the activation in between.
+//   muscle_force_length: 0.5       # optional; needs muscles. Length of a fibre segment, relative
+//                                  # to its rest length, at which its active tension has fallen
+//                                  # to 0 (Hill's ascending limb, tongue/force_length.hpp), in
+//                                  # [0, 1); default 0.5 (Zajac 1989). "constant": the plain
+//                                  # fibre model, tension independent of length.
 //   activations:                   # optional; needs muscles. Steps of activation, each naming
 //                                  # exactly one of muscles / group and one of level / force:
 //     - {muscles: [SG_left, SG_right], level: 0.125, start: 0.0, end: 0.12}
@@ -100,6 +105,7 @@
 #include "fem/solver/newton_solver.hpp"
 #include "fem/types.hpp"
 #include "tongue/active_stiffening.hpp"
+#include "tongue/force_length.hpp"
 
 namespace tongue::scene {
 
@@ -217,6 +223,8 @@ struct Scene {
   std::vector<ActivationSpec> activations;
   // E_contracted / E_rest of active muscle tissue (tongue/active_stiffening.hpp); 1: none.
   double muscle_stiffening = model::kContractedToRestStiffness;
+  // Active force-length relation of every fibre segment (tongue/force_length.hpp).
+  model::ActiveForceLength muscle_force_length;
   AnalysisSpec analysis;
   // The solver block over fem::NewtonSettings' defaults, and the keys it gave: a dynamic
   // analysis takes its own defaults for the keys not given (dynamic_newton_settings in

@@ -84,7 +84,8 @@ class Builder {
     }
     if (!muscles.empty()) {
       try {
-        built.muscles = std::make_shared<model::MuscleForces>(built.solid, muscles);
+        built.muscles =
+            std::make_shared<model::MuscleForces>(built.solid, muscles, scene_.muscle_force_length);
       } catch (const std::invalid_argument& e) {
         fail(muscle_path(muscles, e.what()), e.what());
       }

@@ -125,7 +125,8 @@ class Parser {
     expect_map(root, "(top level)");
     check_keys(root, "",
                {"mesh", "material", "node_sets", "constraints", "gravity", "loads", "damping",
-                "muscles", "muscle_stiffening", "activations", "analysis", "solver", "output"});
+                "muscles", "muscle_stiffening", "muscle_force_length", "activations", "analysis",
+                "solver", "output"});
     Scene scene;
     scene.source = source_;
     scene.text = text;
@@ -149,6 +150,12 @@ class Parser {
         fail("muscle_stiffening",
              "must be >= 1 (1: no stiffening), got " + format(scene.muscle_stiffening), n);
       }
+    }
+    if (const auto n = root["muscle_force_length"]; present(n)) {
+      if (scene.muscle_source == MuscleSource::none) {
+        fail("muscle_force_length", "needs muscles", n);
+      }
+      scene.muscle_force_length = force_length(n, "muscle_force_length");
     }
     read_analysis(required(root, "", "analysis"), "analysis", scene.analysis);
     if (const auto n = root["solver"]; present(n))
@@ -250,6 +257,20 @@ class Parser {
     if (v < 0.0)
       fail(path, "must not be negative, got " + format(v) + (unit.empty() ? "" : " " + unit), n);
     return v;
+  }
+
+  // The zero-force length of the force-length relation, in [0, 1), or "constant".
+  model::ActiveForceLength force_length(const YAML::Node& n, const std::string& path) const {
+    if (n.IsScalar() && n.Scalar() == "constant")
+      return model::ActiveForceLength::constant_tension();
+    double v = 0.0;
+    if (!n.IsScalar() || !YAML::convert<double>::decode(n, v) || !(v >= 0.0 && v < 1.0)) {
+      fail(path,
+           "expected a zero-force length in [0, 1) (relative to rest) or 'constant', got " +
+               describe(n),
+           n);
+    }
+    return model::ActiveForceLength(v);
   }
 
   int at_least(const YAML::Node& n, const std::string& path, int lo) const {

@@ -83,23 +83,28 @@ double fibre_lengthening_rate(const Fibre& fibre, const Vector& x, const Vector&
 }
 
 MuscleForces::MuscleForces(std::shared_ptr<const fem::SolidModel> solid,
-                           std::vector<Muscle> muscles)
+                           std::vector<Muscle> muscles, ActiveForceLength force_length)
     : solid_(std::move(solid)),
       muscles_(std::move(muscles)),
-      activations_(Vector::Zero(static_cast<Eigen::Index>(muscles_.size()))) {
+      activations_(Vector::Zero(static_cast<Eigen::Index>(muscles_.size()))),
+      force_length_(force_length),
+      first_segment_(muscles_.size()) {
   const fem::Mesh& mesh = solid_->mesh();
   const Vector& rest = solid_->rest_positions();
   std::set<std::string> names;
-  for (const Muscle& muscle : muscles_) {
+  for (size_t m = 0; m < muscles_.size(); ++m) {
+    const Muscle& muscle = muscles_[m];
     validate(muscle, mesh.num_nodes(), mesh.num_elements());
     if (!names.insert(muscle.name).second) {
       throw std::invalid_argument("muscle '" + muscle.name + "' is defined twice");
     }
     for (size_t f = 0; f < muscle.fibres.size(); ++f) {
       const std::string where = "muscle '" + muscle.name + "': fibre " + std::to_string(f);
+      first_segment_[m].push_back(static_cast<int>(rest_lengths_.size()));
       for_each_segment(muscle.fibres[f], rest,
                        [&](int from_node, int to_node, const Vec3& from, const Vec3& to) {
-                         if ((to - from).norm() == 0.0) {
+                         rest_lengths_.push_back((to - from).norm());
+                         if (rest_lengths_.back() == 0.0) {
                            throw std::invalid_argument(where +
                                                        " has a zero-length segment at "
                                                        "rest ending at node " +
@@ -163,18 +168,25 @@ void MuscleForces::add(const Vector& u, double load_factor, Vector& force,
     const double muscle_tension = load_factor * activations_[m] * muscle.max_force;
     if (muscle_tension == 0.0) continue;
     if (x.size() == 0) x = positions(u);
-    for (const Fibre& fibre : muscle.fibres) {
+    for (size_t f = 0; f < muscle.fibres.size(); ++f) {
+      const Fibre& fibre = muscle.fibres[f];
       const double T = muscle_tension * fibre.weight;
+      const double* rest_length = &rest_lengths_[first_segment_[m][f]];
       for_each_segment(fibre, x, [&](int from_node, int to_node, const Vec3& from, const Vec3& to) {
+        const double l_rest = *rest_length++;
         const double l = (to - from).norm();
-        if (l == 0.0) return;
+        const double stretch = l / l_rest;
+        const double t = T * force_length_.value(stretch);  // this segment's tension
+        if (l == 0.0 || t == 0.0) return;
         const Vec3 e = (to - from) / l;
-        // f = -T dl/dx with dl/dx_to = e, dl/dx_from = -e: the ends are pulled together.
-        force.segment<3>(3 * to_node) -= T * e;
-        if (from_node >= 0) force.segment<3>(3 * from_node) += T * e;
+        // f = -t dl/dx with dl/dx_to = e, dl/dx_from = -e: the ends are pulled together.
+        force.segment<3>(3 * to_node) -= t * e;
+        if (from_node >= 0) force.segment<3>(3 * from_node) += t * e;
         if (stiffness == nullptr) return;
-        // T d2l/dx2: d e / d x_to = (I - e e^T) / l.
-        const Mat3 B = T * (Mat3::Identity() - e * e.transpose()) / l;
+        // d(t e)/dx_to: t (I - e e^T) / l from the turning direction, plus the change of the
+        // tension with length, T f'(l / l_rest) / l_rest along e.
+        const Mat3 B = t * (Mat3::Identity() - e * e.transpose()) / l +
+                       (T * force_length_.slope(stretch) / l_rest) * e * e.transpose();
         fem::add_node_block(*stiffness, dofs, to_node, to_node, B);
         if (from_node >= 0) {
           fem::add_node_block(*stiffness, dofs, from_node, from_node, B);

@@ -590,3 +590,58 @@ TEST(MuscleStiffeningScene, NeedsMuscles) {
 
 }  // namespace
 }  // namespace tongue::scene
+
+namespace tongue::scene {
+namespace {
+
+const char* const kBuiltinMusclesHead = R"(
+mesh: {tongue: {refinement: 1}}
+material: {type: mooney_rivlin5}
+muscles: builtin
+analysis: {type: static}
+)";
+
+TEST(MuscleForceLengthScene, DefaultIsZajacsHalfRestLengthAndConstantTurnsItOff) {
+  const std::string head = kBuiltinMusclesHead;
+  const auto relation = [&](const std::string& line) {
+    return parse_scene(head + line, "", "t.yaml").muscle_force_length;
+  };
+  EXPECT_FALSE(relation("").is_constant());
+  EXPECT_EQ(relation("").zero_force_length(), 0.5);
+  EXPECT_EQ(relation("muscle_force_length: 0.3\n").zero_force_length(), 0.3);
+  EXPECT_EQ(relation("muscle_force_length: 0\n").zero_force_length(), 0.0);
+  EXPECT_TRUE(relation("muscle_force_length: constant\n").is_constant());
+  for (const char* bad :
+       {"muscle_force_length: 1\n", "muscle_force_length: -0.1\n", "muscle_force_length: abc\n",
+        "muscle_force_length: [0.5]\n", "muscle_force_length: .nan\n"}) {
+    try {
+      parse_scene(head + bad, "", "t.yaml");
+      ADD_FAILURE() << "accepted " << bad;
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("t.yaml: muscle_force_length: expected a zero-force "
+                                           "length in [0, 1)"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
+TEST(MuscleForceLengthScene, NeedsMusclesAndReachesTheBuiltMuscles) {
+  try {
+    parse_scene(
+        "mesh: {box: {size: [0.01, 0.01, 0.01], divisions: [1, 1, 1]}}\n"
+        "material: {type: mooney_rivlin5}\n"
+        "muscle_force_length: 0.5\nanalysis: {type: static}\n",
+        "", "t.yaml");
+    ADD_FAILURE() << "accepted muscle_force_length without muscles";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("muscle_force_length: needs muscles"), std::string::npos)
+        << e.what();
+  }
+  const BuiltScene built = build_scene(
+      parse_scene(std::string(kBuiltinMusclesHead) + "muscle_force_length: 0.4\n", "", "t.yaml"));
+  EXPECT_EQ(built.muscles->force_length().zero_force_length(), 0.4);
+}
+
+}  // namespace
+}  // namespace tongue::scene

@@ -7,10 +7,10 @@
 
 #include <cmath>
 #include <cstdio>
-#include <random>
 #include <string>
 #include <vector>
 
+#include "random_activation_sequence.hpp"
 #include "stress_support.hpp"
 #include "support/sim_server_driver.hpp"
 #include "support/temp_dir_test.hpp"
@@ -28,6 +28,7 @@ namespace {
 constexpr double kDt = 0.004;                             // s
 constexpr double kSimulated = STRESS_FULL ? 600.0 : 2.0;  // s
 constexpr double kMeanHold = 0.1;                         // s between jumps of one muscle
+constexpr unsigned kSeed = 2026;
 constexpr int kPort = STRESS_FULL ? 7876 : 7875;
 
 class RandomActivations : public testing::TempDirTest {};
@@ -44,21 +45,13 @@ TEST_F(RandomActivations, EveryStepConvergesAndNoElementInverts) {
   ASSERT_TRUE(model) << server.stderr_text();
   ASSERT_TRUE(controller.wait_step(0, 60000)) << server.stderr_text();
 
-  std::mt19937 random(2026);
-  std::uniform_real_distribution<double> level(0.0, 1.0);
-  std::bernoulli_distribution jump(kDt / kMeanHold);
-  std::vector<double> levels(model->muscle_names.size(), 0.0);
+  RandomActivationSequence sequence(static_cast<int>(model->muscle_names.size()), kDt, kMeanHold,
+                                    kSeed);
   const long steps = std::lround(kSimulated / kDt);
-  long cuts = 0, jumps = 0;
+  long cuts = 0;
   double worst = 1e300;
   for (long k = 1; k <= steps; ++k) {
-    for (double& l : levels) {
-      if (jump(random)) {
-        l = level(random);
-        ++jumps;
-      }
-    }
-    controller.send_activation(k, model->muscle_names, levels);
+    controller.send_activation(k, model->muscle_names, sequence.next());
     const auto s = controller.wait_step(k, 60000);
     ASSERT_TRUE(s) << "no state for step " << k << "\n" << server.stderr_text();
     ASSERT_TRUE(s->converged) << "step " << k << ": " << s->status;
@@ -74,7 +67,7 @@ TEST_F(RandomActivations, EveryStepConvergesAndNoElementInverts) {
   std::printf(
       "%ld steps (%.0f s simulated), %ld activation jumps, %ld step cuts (reported), "
       "smallest det J / det J0 %.3f\n",
-      steps, kSimulated, jumps, cuts, worst);
+      steps, kSimulated, sequence.jumps(), cuts, worst);
   controller.send_command("shutdown");
   EXPECT_EQ(server.wait_exit(10000), 0) << server.stderr_text();
 }

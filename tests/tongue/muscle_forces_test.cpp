@@ -1,7 +1,9 @@
 // Fibre forces (Payan & Perrier 1997): f = -T dL/dx checked by finite differences of the length
 // on strongly curved fibres, the closed-form cases (straight fibre, right-angle corner), the
 // totals (internal without origin, T toward the attachment with one), inactive muscles, and the
-// length and lengthening-velocity outputs.
+// length and lengthening-velocity outputs. With the active force-length relation: each segment
+// pulls with its own tension T f(l / l_rest), and a segment passing through zero length pulls
+// with no force at all (where constant tension jumps by 2 T).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -87,9 +89,21 @@ struct CurvedScene {
   }
 };
 
+// Lengths of a fibre's segments at positions x (3 n), the one from its origin first [m].
+std::vector<double> segment_lengths(const Fibre& fibre, const Vector& x) {
+  std::vector<double> out;
+  Vec3 from = fibre.origin ? *fibre.origin : Vec3(x.segment<3>(3 * fibre.nodes[0]));
+  for (size_t i = fibre.origin ? 0 : 1; i < fibre.nodes.size(); ++i) {
+    const Vec3 to = x.segment<3>(3 * fibre.nodes[i]);
+    out.push_back((to - from).norm());
+    from = to;
+  }
+  return out;
+}
+
 TEST(MuscleForces, ForceIsMinusTensionTimesTheLengthGradient) {
   CurvedScene scene;
-  MuscleForces muscles(scene.solid, scene.muscles);
+  MuscleForces muscles(scene.solid, scene.muscles, ActiveForceLength::constant_tension());
   const Vector a = (Vector(2) << 0.6, 0.3).finished();
   muscles.set_activations(a);
   const double load_factor = 0.7;
@@ -108,6 +122,97 @@ TEST(MuscleForces, ForceIsMinusTensionTimesTheLengthGradient) {
   EXPECT_LT(error, 1e-8);
   // The nodes of no fibre carry no force.
   EXPECT_EQ(node_force(f, grid_node(0, 1, 1)).norm(), 0.0);
+}
+
+TEST(MuscleForces, WithForceLengthEachSegmentPullsWithItsOwnTension) {
+  CurvedScene scene;
+  const ActiveForceLength relation;
+  MuscleForces muscles(scene.solid, scene.muscles, relation);
+  const Vector a = (Vector(2) << 0.6, 0.3).finished();
+  muscles.set_activations(a);
+  const double load_factor = 0.7;
+  Vector f = Vector::Zero(scene.solid->num_dofs());
+  muscles.add(scene.u, load_factor, f, nullptr);
+
+  // f = -sum over segments of t_s grad l_s with t_s = load_factor a F_max w f(l_s / l_rest,s):
+  // the gradient of sum c_s l_s(u), c_s = t_s frozen at scene.u, by central differences (as in
+  // the test above).
+  const Vector rest = scene.solid->rest_positions(), x0 = rest + scene.u;
+  std::vector<double> c;
+  int on_the_limb = 0;  // segments between the zero-force length and rest: f strictly in (0, 1)
+  for (size_t m = 0; m < scene.muscles.size(); ++m) {
+    for (const Fibre& fibre : scene.muscles[m].fibres) {
+      const std::vector<double> l = segment_lengths(fibre, x0),
+                                l_rest = segment_lengths(fibre, rest);
+      for (size_t s = 0; s < l.size(); ++s) {
+        const double scale = relation.value(l[s] / l_rest[s]);
+        on_the_limb += scale > 0.0 && scale < 1.0;
+        c.push_back(load_factor * a[m] * scene.muscles[m].max_force * fibre.weight * scale);
+      }
+    }
+  }
+  ASSERT_GE(on_the_limb, 3) << "the scene should exercise the ascending limb";
+  const auto weighted_length = [&](const Vector& u) -> Vector {
+    double sum = 0.0;
+    size_t k = 0;
+    for (const Muscle& muscle : scene.muscles)
+      for (const Fibre& fibre : muscle.fibres)
+        for (double l : segment_lengths(fibre, rest + u)) sum += c[k++] * l;
+    return Vector::Constant(1, sum);
+  };
+  const Vector expected =
+      -tongue::testing::central_difference_jacobian(weighted_length, scene.u, 1e-7).transpose();
+  const double error = (f - expected).norm() / expected.norm();
+  std::printf(
+      "  force vs -sum t_s grad l_s (%d segments on the ascending limb): relative error "
+      "%.2e\n",
+      on_the_limb, error);
+  EXPECT_LT(error, 1e-8);
+}
+
+TEST(MuscleForces, SegmentShortenedToThreeQuartersPullsWithElevenSixteenthsOfTheTension) {
+  // One 10 mm segment along x, its end moved 2.5 mm back: lambda = 3/4, f = 11/16 (by hand,
+  // force_length_test.cpp).
+  const std::vector<Muscle> list = {
+      muscle("IL", {fibre({grid_node(1, 1, 1), grid_node(2, 1, 1)})}, 9.0)};
+  MuscleForces muscles(make_solid(grid_box(), list), list);
+  muscles.set_activation(0, 1.0);
+  Vector u = Vector::Zero(3 * 45), f = Vector::Zero(3 * 45);
+  u[3 * grid_node(2, 1, 1)] = -0.0025;
+  muscles.add(u, 1.0, f, nullptr);
+  // One unit vector and one product: a few roundings of 9 N.
+  EXPECT_LT((node_force(f, grid_node(2, 1, 1)) - Vec3(-9.0 * 11.0 / 16.0, 0, 0)).norm(), 1e-14);
+  EXPECT_LT((node_force(f, grid_node(1, 1, 1)) - Vec3(9.0 * 11.0 / 16.0, 0, 0)).norm(), 1e-14);
+}
+
+// The failure this relation removes: two consecutive fibre nodes crushed together by the
+// segment's own tension. With constant tension the force on a node jumps by 2 T as the segment
+// passes through zero length (its direction flips), which Newton cannot converge across; with
+// the force-length relation the segment pulls with nothing below half its rest length, so the
+// force is continuous (zero) there.
+TEST(MuscleForces, SegmentPassingThroughZeroLengthPullsWithNoForce) {
+  const int a = grid_node(1, 1, 1), b = grid_node(2, 1, 1);
+  const std::vector<Muscle> list = {muscle("MH", {fibre({a, b})}, 39.0)};
+  const auto solid = make_solid(grid_box(), list);
+  MuscleForces hill(solid, list), constant(solid, list, ActiveForceLength::constant_tension());
+  hill.set_activation(0, 1.0);
+  constant.set_activation(0, 1.0);
+  const auto force_on_b = [&](const MuscleForces& muscles, double offset) {
+    // b at a + offset along x (rest: offset 10 mm).
+    Vector u = Vector::Zero(3 * 45), f = Vector::Zero(3 * 45);
+    u[3 * b] = offset - 0.01;
+    fem::SymmetricMatrix K(solid->pattern());
+    muscles.add(u, 1.0, f, &K);
+    for (double v : K.values()) EXPECT_TRUE(std::isfinite(v)) << "offset " << offset;
+    return Vec3(node_force(f, b));
+  };
+  for (const double offset : {-1e-4, -1e-9, 0.0, 1e-9, 1e-4, 0.004, 0.0049}) {
+    EXPECT_EQ(force_on_b(hill, offset), Vec3::Zero()) << "offset " << offset << " m";
+  }
+  EXPECT_GT(force_on_b(hill, 0.0051).norm(), 0.0);  // just above half the rest length
+  // Constant tension: 39 N toward a from either side.
+  EXPECT_EQ(force_on_b(constant, -1e-9).x(), 39.0);
+  EXPECT_EQ(force_on_b(constant, 1e-9).x(), -39.0);
 }
 
 TEST(MuscleForces, StraightFibrePullsItsEndsTogetherAndLeavesInnerNodesFree) {

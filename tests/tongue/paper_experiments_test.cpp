@@ -1,6 +1,7 @@
 // The simulations of Gerard et al. 2003 (sec. IV.2): from static equilibrium under gravity, a
 // 120 ms step of muscle force, mooney_rivlin5 at nu = 0.49, Rayleigh beta = 0.028 s, active
-// muscle tissue stiffening up to 110 / 15 (as in the tongue scenes). Each test
+// muscle tissue stiffening up to 110 / 15 and the fibre segments' active force-length relation
+// (both as in the tongue scenes). Each test
 // checks the directions the paper reports on the landmarks. Thresholds are set well below the
 // displacements the model gives (printed), so that they test the direction, not the digits:
 // 0.1 mm is an order of magnitude above the solver's tolerance on positions and below every
