@@ -29,29 +29,50 @@ EllipticityMonitor::EllipticityMonitor(const SolidModel& solid, double screen)
   }
 }
 
+// The isochoric strain ||C_bar - I|| at element e's centre and its F; strain < 0 for an
+// inverted centre (reported by the solver itself, not here).
+std::pair<double, Mat3> EllipticityMonitor::centre_state(int e, const Vector& x) const {
+  const Mat3 F = coords(solid_.mesh(), e, x).transpose() * centre_gradients_[e];
+  const double J = F.determinant();
+  if (!(J > 0.0)) return {-1.0, F};
+  const Mat3 C_bar = std::pow(J, -2.0 / 3.0) * (F.transpose() * F);
+  return {(C_bar - Mat3::Identity()).norm(), F};
+}
+
+std::optional<EllipticityLoss> EllipticityMonitor::search(int e, const Vector& x) const {
+  const auto [strain, F] = centre_state(e, x);
+  if (strain <= screen_) return std::nullopt;
+  const EllipticityCheck c = check_ellipticity(solid_.material(), F);
+  if (c.elliptic()) return std::nullopt;
+  return EllipticityLoss{e, c.min_eigenvalue, strain};
+}
+
 std::optional<EllipticityLoss> EllipticityMonitor::check(const Vector& u) const {
   const Vector x = solid_.rest_positions() + u;
   std::optional<EllipticityLoss> worst;
   for (int e = 0; e < static_cast<int>(centre_gradients_.size()); ++e) {
-    const Mat3 F = coords(solid_.mesh(), e, x).transpose() * centre_gradients_[e];
-    const double J = F.determinant();
-    if (!(J > 0.0)) continue;  // inverted elements are reported by the solver itself
-    const Mat3 C_bar = std::pow(J, -2.0 / 3.0) * (F.transpose() * F);
-    const double strain = (C_bar - Mat3::Identity()).norm();
-    if (strain <= screen_) continue;
-    const EllipticityCheck c = check_ellipticity(solid_.material(), F);
-    if (!c.elliptic() && (!worst || c.min_eigenvalue < worst->min_eigenvalue)) {
-      worst = EllipticityLoss{e, c.min_eigenvalue, strain};
-    }
+    const auto loss = search(e, x);
+    if (loss && (!worst || loss->min_eigenvalue < worst->min_eigenvalue)) worst = loss;
   }
   return worst;
 }
 
 std::optional<EllipticityLoss> EllipticityMonitor::first_loss(const Vector& u) {
   if (reported_) return std::nullopt;
-  const auto loss = check(u);
-  reported_ = loss.has_value();
-  return loss;
+  const Vector x = solid_.rest_positions() + u;
+  const int n = static_cast<int>(centre_gradients_.size());
+  int searches = 0;
+  for (int visited = 0; visited < n && searches < kSearchesPerCall; ++visited) {
+    const int e = next_element_;
+    next_element_ = (next_element_ + 1) % n;
+    if (centre_state(e, x).first <= screen_) continue;  // cheap: no search
+    ++searches;
+    if (auto loss = search(e, x)) {
+      reported_ = true;
+      return loss;
+    }
+  }
+  return std::nullopt;
 }
 
 std::string describe(const EllipticityLoss& loss, const Material& material) {

@@ -2,10 +2,13 @@
 // Watches whether a solid's material stays strongly elliptic (fem/material/ellipticity.hpp) as
 // it deforms, so that a run entering a region where its law is unstable says so instead of
 // producing mesh-dependent bands or failing later without a reason. Checked at each element's
-// centre; only elements strained beyond a screen get the full direction search, which keeps
-// the cost per step to a few tens of microseconds on the tongue.
+// centre; only elements strained beyond a screen get the direction search (~0.1 ms each), and
+// first_loss spreads those searches over steps (a budget per call, taken in turn), so that a
+// run pays a few tenths of a millisecond per step at most and learns of a loss within a few
+// steps of it.
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fem/assembly/solid_model.hpp"
@@ -22,21 +25,28 @@ class EllipticityMonitor {
  public:
   // Elements whose isochoric strain ||C_bar - I|| (Frobenius) stays within screen are not
   // searched; the tests show every law of this project elliptic there.
-  static constexpr double kDefaultScreen = 0.5;
+  static constexpr double kDefaultScreen = 1.0;
+  // Direction searches first_loss may do per call.
+  static constexpr int kSearchesPerCall = 4;
 
   explicit EllipticityMonitor(const SolidModel& solid, double screen = kDefaultScreen);
 
   // The element with the most negative eigenvalue among those that lost ellipticity at
   // displacement u (full vector), or nullopt when every element is elliptic.
   std::optional<EllipticityLoss> check(const Vector& u) const;
-  // As check, but reports a loss only the first time one is found (a run warns once); after
-  // that it costs nothing.
+  // For a run that warns once: searches at most kSearchesPerCall of the screened elements,
+  // continuing where the previous call stopped, and reports a loss only the first time one is
+  // found; after that it costs nothing.
   std::optional<EllipticityLoss> first_loss(const Vector& u);
 
  private:
+  std::pair<double, Mat3> centre_state(int e, const Vector& x) const;
+  std::optional<EllipticityLoss> search(int e, const Vector& x) const;
+
   const SolidModel& solid_;
   double screen_;
   bool reported_ = false;
+  int next_element_ = 0;  // where first_loss resumes its round of the screened elements
   std::vector<Eigen::Matrix<double, 8, 3>> centre_gradients_;  // dN_a/dX at each centre
 };
 

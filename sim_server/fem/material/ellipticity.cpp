@@ -6,7 +6,7 @@
 namespace tongue::fem {
 namespace {
 
-constexpr int kDirections = 400;  // even spread over the half sphere
+constexpr int kDirections = 128;  // even spread over the half sphere
 constexpr int kRefinements = 40;  // local pattern-search halvings around the weakest
 constexpr double kPi = 3.14159265358979323846;
 

@@ -21,7 +21,7 @@ struct EllipticityCheck {
 // The acoustic tensor Q(N) of tangent A (first Piola form, types.hpp flattening).
 Mat3 acoustic_tensor(const Mat9& A, const Vec3& N);
 
-// Searches the unit sphere for the direction of least stiffness: 400 directions spread evenly
+// Searches the unit sphere for the direction of least stiffness: 128 directions spread evenly
 // over the half sphere (N and -N give the same Q), then a local refinement around the weakest.
 EllipticityCheck check_ellipticity(const Material& material, const Mat3& F);
 
