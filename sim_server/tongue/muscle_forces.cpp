@@ -179,7 +179,7 @@ void MuscleForces::add(const Vector& u, double load_factor, Vector& force,
         const double t = T * force_length_.value(stretch);  // this segment's tension
         if (l == 0.0 || t == 0.0) return;
         const Vec3 e = (to - from) / l;
-        // f = -t dl/dx with dl/dx_to = e, dl/dx_from = -e: the ends are pulled together.
+        // F = -t dl/dx with dl/dx_to = e, dl/dx_from = -e: the ends are pulled together.
         force.segment<3>(3 * to_node) -= t * e;
         if (from_node >= 0) force.segment<3>(3 * from_node) += t * e;
         if (stiffness == nullptr) return;

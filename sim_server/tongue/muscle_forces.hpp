@@ -1,16 +1,16 @@
 #pragma once
 // Muscle fibre forces (Payan & Perrier 1997; Gerard et al. 2003 sec. III.3.2; DESIGN.md sec. 2),
-// with an active force-length relation per fibre segment (force_length.hpp). A fibre of tension
-// T = activation * F_max * weight is a chain of segments; the segment of length l (rest length
-// l_r, unit vector e from its first point to its second) carries the tension t = T f(l / l_r)
-// and pulls its two ends toward each other with it:
-//   f = -sum over segments t dl/dx  (dl/dx_second = e, dl/dx_first = -e).
+// with an active force-length relation f per fibre segment (force_length.hpp). A fibre of
+// tension T = activation * F_max * weight is a chain of segments; the segment of length l (rest
+// length l_r, unit vector e from its first point to its second) carries the tension
+// t = T f(l / l_r) and pulls its two ends toward each other with it. The nodal force is
+//   F = -sum over segments t dl/dx  (dl/dx_second = e, dl/dx_first = -e).
 // With f = 1 (constant tension) this is -T dL/dx, L the fibre's length (including |x_0 - P| for
 // an origin P): the end nodes are pulled along the fibre and an inner node feels
-// T (e_prev + e_next), the curvature force that straightens a curved muscle. Either way f is the
-// gradient of the potential sum T l_r F(l / l_r), F' = f, so its tangent is symmetric: per
-// segment the 6 x 6 block [[B, -B], [-B, B]] (only B on the node of a segment from a fixed
-// origin) with
+// T (e_prev + e_next), the curvature force that straightens a curved muscle. Either way F is
+// minus the gradient of the potential sum T l_r Phi(l / l_r), Phi' = f, so its tangent -dF/dx is
+// symmetric: per segment the 6 x 6 block [[B, -B], [-B, B]] (only B on the node of a segment
+// from a fixed origin) with
 //   B = t (I - e e^T) / l + T f'(l / l_r) / l_r e e^T,
 // positive semidefinite since f, f' >= 0.
 #include <memory>
