@@ -3,7 +3,7 @@
 #include <stdexcept>
 #include <string>
 
-namespace tongue::controllers::ep {
+namespace tongue::ep_controller {
 
 DelayBuffer::DelayBuffer(int delay_steps) : delay_steps_(delay_steps) {
   if (delay_steps < 1)
@@ -28,4 +28,4 @@ const Feedback& DelayBuffer::for_step(std::int64_t step) const {
   return entries_.front();
 }
 
-}  // namespace tongue::controllers::ep
+}  // namespace tongue::ep_controller

@@ -9,7 +9,7 @@
 #include <deque>
 #include <vector>
 
-namespace tongue::controllers::ep {
+namespace tongue::ep_controller {
 
 struct Feedback {
   std::int64_t step = 0;
@@ -38,4 +38,4 @@ class DelayBuffer {
   std::deque<Feedback> entries_;
 };
 
-}  // namespace tongue::controllers::ep
+}  // namespace tongue::ep_controller

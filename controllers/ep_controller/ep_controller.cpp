@@ -4,12 +4,12 @@
 #include <cstdio>
 #include <stdexcept>
 
-#include "common/input_error.hpp"
-#include "common/muscle_selection.hpp"
-#include "common/number_text.hpp"
+#include "controller/input_error.hpp"
+#include "controller/muscle_selection.hpp"
+#include "controller/number_text.hpp"
 #include "ep_controller/muscle_rho.hpp"
 
-namespace tongue::controllers::ep {
+namespace tongue::ep_controller {
 namespace {
 
 constexpr double kMmPerM = 1000.0;
@@ -24,19 +24,19 @@ EpController::EpController(MotorPlanSpec plan, EpSettings settings)
     throw std::invalid_argument("the force lag must be a finite number >= 0 s");
 }
 
-void EpController::start(const Model& model) {
+void EpController::start(const controller::Model& model) {
   if (!(model.dt > 0.0) || !std::isfinite(model.dt))
-    throw std::runtime_error("the model's dt is " + number_text(model.dt) + " s, not > 0");
+    throw std::runtime_error("the model's dt is " + controller::number_text(model.dt) + " s, not > 0");
   dt_ = model.dt;
   names_ = model.muscle_names;
   plan_.emplace(spec_, names_);
 
   std::vector<std::pair<std::string, double>> overrides;
   for (const RhoEntry& r : spec_.rho) {
-    if (select_muscles(r.name, names_).empty())
-      throw InputError(spec_.source, r.key_path,
+    if (controller::select_muscles(r.name, names_).empty())
+      throw controller::InputError(spec_.source, r.key_path,
                        "no muscle is named '" + r.name + "' or starts with '" + r.name +
-                           "_' (the server's muscles: " + joined_names(names_) + ")",
+                           "_' (the server's muscles: " + controller::joined_names(names_) + ")",
                        r.line);
     overrides.emplace_back(r.name, r.rho_n);
   }
@@ -44,7 +44,7 @@ void EpController::start(const Model& model) {
   try {
     rho = muscle_rhos(names_, model.muscle_max_forces, overrides);
   } catch (const std::invalid_argument& e) {
-    throw InputError(spec_.source, "rho", e.what());
+    throw controller::InputError(spec_.source, "rho", e.what());
   }
   laws_.assign(names_.size(), MuscleLaw{});
   for (std::size_t m = 0; m < names_.size(); ++m) {
@@ -56,7 +56,7 @@ void EpController::start(const Model& model) {
   lag_.emplace(names_.size(), settings_.force_lag_s, dt_);
 }
 
-void EpController::observe(const State& state) {
+void EpController::observe(const controller::State& state) {
   const std::size_t n = names_.size();
   if (state.muscle_lengths.size() != n || state.muscle_velocities.size() != n)
     throw std::runtime_error("the state of step " + std::to_string(state.step) + " has " +
@@ -66,8 +66,8 @@ void EpController::observe(const State& state) {
     const double l = state.muscle_lengths[m], v = state.muscle_velocities[m];
     if (!std::isfinite(l) || !(l > 0.0) || !std::isfinite(v))
       throw std::runtime_error("the state of step " + std::to_string(state.step) + " gives " +
-                               names_[m] + " length " + number_text(l) + " m, velocity " +
-                               number_text(v) + " m/s: not usable feedback");
+                               names_[m] + " length " + controller::number_text(l) + " m, velocity " +
+                               controller::number_text(v) + " m/s: not usable feedback");
   }
   if (!have_rest_lengths_) {
     for (std::size_t m = 0; m < n; ++m) laws_[m].rest_length_mm = state.muscle_lengths[m] * kMmPerM;
@@ -76,7 +76,7 @@ void EpController::observe(const State& state) {
   history_->push(Feedback{state.step, state.muscle_lengths, state.muscle_velocities});
 }
 
-MuscleLevels EpController::command(std::int64_t step) {
+controller::MuscleLevels EpController::command(std::int64_t step) {
   const Feedback& fb = history_->for_step(step);
   const double t = static_cast<double>(step) * dt_;
   last_.assign(names_.size(), MuscleCommand{});
@@ -89,7 +89,7 @@ MuscleLevels EpController::command(std::int64_t step) {
                               settings_.constants);
     law_levels[m] = last_[m].level;
   }
-  MuscleLevels out;
+  controller::MuscleLevels out;
   out.names = names_;
   out.levels = lag_->update(step, law_levels);
   for (std::size_t m = 0; m < names_.size(); ++m) {
@@ -119,4 +119,4 @@ std::string EpController::summary() const {
   return s;
 }
 
-}  // namespace tongue::controllers::ep
+}  // namespace tongue::ep_controller

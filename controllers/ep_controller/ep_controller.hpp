@@ -19,13 +19,13 @@
 #include <string>
 #include <vector>
 
-#include "common/controller.hpp"
+#include "controller/controller.hpp"
 #include "ep_controller/delay_buffer.hpp"
 #include "ep_controller/force_lag.hpp"
 #include "ep_controller/lambda_model.hpp"
 #include "ep_controller/motor_plan.hpp"
 
-namespace tongue::controllers::ep {
+namespace tongue::ep_controller {
 
 struct EpSettings {
   double delay_s = 0.012;  // reflex delay d [s] (DESIGN.md sec. 4: 10-20 ms)
@@ -34,16 +34,16 @@ struct EpSettings {
   LambdaConstants constants;
 };
 
-class EpController final : public Controller {
+class EpController final : public controller::Controller {
  public:
   EpController(MotorPlanSpec plan, EpSettings settings);
 
   // Throws InputError (naming the plan file) for plan names that select no muscle, and for a
   // muscle without rho; std::runtime_error for a model without a usable dt.
-  void start(const Model& model) override;
+  void start(const controller::Model& model) override;
   // Throws std::runtime_error when a length or velocity is not finite or a length is not > 0.
-  void observe(const State& state) override;
-  MuscleLevels command(std::int64_t step) override;
+  void observe(const controller::State& state) override;
+  controller::MuscleLevels command(std::int64_t step) override;
   std::string summary() const override;
 
   int delay_steps() const { return history_ ? history_->delay_steps() : 0; }
@@ -67,4 +67,4 @@ class EpController final : public Controller {
   std::int64_t peak_step_ = 0;
 };
 
-}  // namespace tongue::controllers::ep
+}  // namespace tongue::ep_controller

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <stdexcept>
 
-namespace tongue::controllers::ep {
+namespace tongue::ep_controller {
 
 ForceLag::ForceLag(std::size_t size, double tau_s, double dt_s)
     : tau_s_(tau_s), dt_s_(dt_s), y_(size, 0.0) {
@@ -30,4 +30,4 @@ const std::vector<double>& ForceLag::update(std::int64_t step, const std::vector
   return y_;
 }
 
-}  // namespace tongue::controllers::ep
+}  // namespace tongue::ep_controller

@@ -18,7 +18,7 @@
 #include <optional>
 #include <vector>
 
-namespace tongue::controllers::ep {
+namespace tongue::ep_controller {
 
 class ForceLag {
  public:
@@ -36,4 +36,4 @@ class ForceLag {
   std::optional<std::int64_t> last_step_;
 };
 
-}  // namespace tongue::controllers::ep
+}  // namespace tongue::ep_controller

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-namespace tongue::controllers::ep {
+namespace tongue::ep_controller {
 
 double stretch_beyond_threshold_mm(double length_mm, double lambda_mm, double velocity_mm_s,
                                    const LambdaConstants& k) {
@@ -35,4 +35,4 @@ MuscleCommand muscle_command(const MuscleLaw& law, double lambda_mm, double leng
   return c;
 }
 
-}  // namespace tongue::controllers::ep
+}  // namespace tongue::ep_controller

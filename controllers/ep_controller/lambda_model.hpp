@@ -14,7 +14,7 @@
 // factor (Laboissiere et al. 1996, after Hill) is about 1 at rest (f1 + f2 atan f3 = 1.003),
 // lower while the muscle shortens and higher while it lengthens; it is clamped at 0, because a
 // muscle shortening faster than the factor's zero cannot push.
-namespace tongue::controllers::ep {
+namespace tongue::ep_controller {
 
 struct LambdaConstants {
   double c_per_mm = 0.112;  // 1/mm, steepness of the exponential force law
@@ -59,4 +59,4 @@ MuscleCommand muscle_command(const MuscleLaw& law, double lambda_mm, double leng
                              double velocity_mm_s, bool use_velocity_factor,
                              const LambdaConstants& k = {});
 
-}  // namespace tongue::controllers::ep
+}  // namespace tongue::ep_controller

@@ -5,26 +5,26 @@
 // from its length and velocity through the reflex delay, its threshold moved by the motor plan.
 #include <memory>
 
-#include "common/command_line.hpp"
-#include "common/controller_main.hpp"
+#include "controller/command_line.hpp"
+#include "controller/controller_main.hpp"
 #include "ep_controller/ep_controller.hpp"
 
 namespace {
 
-using namespace tongue::controllers;
+using namespace tongue;
 
-std::unique_ptr<Controller> make(const CommandLine& line) {
-  ep::EpSettings settings;
+std::unique_ptr<controller::Controller> make(const controller::CommandLine& line) {
+  ep_controller::EpSettings settings;
   if (const auto it = line.values.find("--delay-ms"); it != line.values.end()) {
-    const double ms = parse_number("--delay-ms", it->second);
+    const double ms = controller::parse_number("--delay-ms", it->second);
     if (ms < 0.0 || ms > 1000.0)
-      throw UsageError("--delay-ms must be in [0, 1000] ms, not '" + it->second + "'");
+      throw controller::UsageError("--delay-ms must be in [0, 1000] ms, not '" + it->second + "'");
     settings.delay_s = ms * 1e-3;
   }
   if (const auto it = line.values.find("--force-lag-ms"); it != line.values.end()) {
-    const double ms = parse_number("--force-lag-ms", it->second);
+    const double ms = controller::parse_number("--force-lag-ms", it->second);
     if (ms < 0.0 || ms > 10000.0)
-      throw UsageError("--force-lag-ms must be in [0, 10000] ms, not '" + it->second + "'");
+      throw controller::UsageError("--force-lag-ms must be in [0, 10000] ms, not '" + it->second + "'");
     settings.force_lag_s = ms * 1e-3;
   }
   if (const auto it = line.values.find("--velocity-factor"); it != line.values.end()) {
@@ -33,17 +33,17 @@ std::unique_ptr<Controller> make(const CommandLine& line) {
     } else if (it->second == "off") {
       settings.velocity_factor = false;
     } else {
-      throw UsageError("--velocity-factor must be on or off, not '" + it->second + "'");
+      throw controller::UsageError("--velocity-factor must be on or off, not '" + it->second + "'");
     }
   }
-  return std::make_unique<ep::EpController>(ep::read_motor_plan(line.values.at("--plan")),
+  return std::make_unique<ep_controller::EpController>(ep_controller::read_motor_plan(line.values.at("--plan")),
                                             settings);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  ProgramSpec spec;
+  controller::ProgramSpec spec;
   spec.name = "ep_controller";
   spec.synopsis = "--plan FILE [--delay-ms D] [--velocity-factor on|off] [--force-lag-ms T]";
   spec.options_usage =
@@ -55,5 +55,5 @@ int main(int argc, char** argv) {
   spec.options = {"--plan", "--delay-ms", "--velocity-factor", "--force-lag-ms"};
   spec.required_options = {"--plan"};
   spec.make_controller = make;
-  return controller_main(argc, argv, spec);
+  return controller::controller_main(argc, argv, spec);
 }

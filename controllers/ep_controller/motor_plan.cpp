@@ -2,12 +2,12 @@
 
 #include <cmath>
 
-#include "common/input_error.hpp"
-#include "common/muscle_selection.hpp"
-#include "common/number_text.hpp"
-#include "common/yaml_file.hpp"
+#include "controller/input_error.hpp"
+#include "controller/muscle_selection.hpp"
+#include "controller/number_text.hpp"
+#include "controller/yaml_file.hpp"
 
-namespace tongue::controllers::ep {
+namespace tongue::ep_controller {
 
 double DeltaLambdaTrack::at(double t) const {
   if (targets_mm.empty() || t <= start_s) return 0.0;
@@ -33,16 +33,16 @@ struct Durations {
 };
 
 // Reads transition, hold and start where present in n (the top level or an entry).
-void read_durations(const YamlFile& f, const YAML::Node& n, const std::string& path, Durations& d) {
-  if (const auto v = n["transition"]; present(v))
-    d.transition_s = f.non_negative(v, child_path(path, "transition"), "s");
-  if (const auto v = n["hold"]; present(v))
-    d.hold_s = f.non_negative(v, child_path(path, "hold"), "s");
-  if (const auto v = n["start"]; present(v))
-    d.start_s = f.non_negative(v, child_path(path, "start"), "s");
+void read_durations(const controller::YamlFile& f, const YAML::Node& n, const std::string& path, Durations& d) {
+  if (const auto v = n["transition"]; controller::present(v))
+    d.transition_s = f.non_negative(v, controller::child_path(path, "transition"), "s");
+  if (const auto v = n["hold"]; controller::present(v))
+    d.hold_s = f.non_negative(v, controller::child_path(path, "hold"), "s");
+  if (const auto v = n["start"]; controller::present(v))
+    d.start_s = f.non_negative(v, controller::child_path(path, "start"), "s");
 }
 
-PlanEntry read_entry(const YamlFile& f, const std::string& name, const YAML::Node& n,
+PlanEntry read_entry(const controller::YamlFile& f, const std::string& name, const YAML::Node& n,
                      const std::string& path, const Durations& defaults) {
   PlanEntry e;
   e.name = name;
@@ -53,7 +53,7 @@ PlanEntry read_entry(const YamlFile& f, const std::string& name, const YAML::Nod
     e.track.targets_mm = f.numbers(n, path);
   } else if (n.IsMap()) {
     f.check_keys(n, path, {"targets", "transition", "hold", "start"});
-    e.track.targets_mm = f.numbers(f.required(n, path, "targets"), child_path(path, "targets"));
+    e.track.targets_mm = f.numbers(f.required(n, path, "targets"), controller::child_path(path, "targets"));
     read_durations(f, n, path, d);
   } else {
     f.fail(path,
@@ -71,7 +71,7 @@ PlanEntry read_entry(const YamlFile& f, const std::string& name, const YAML::Nod
   return e;
 }
 
-MotorPlanSpec plan_from(const YamlFile& f) {
+MotorPlanSpec plan_from(const controller::YamlFile& f) {
   const YAML::Node& root = f.root();
   f.expect_map(root, "(top level)");
   f.check_keys(root, "", {"transition", "hold", "start", "delta_lambda_mm", "rho"});
@@ -85,17 +85,17 @@ MotorPlanSpec plan_from(const YamlFile& f) {
   for (auto it = plan.begin(); it != plan.end(); ++it) {
     const std::string name = it->first.Scalar();
     spec.entries.push_back(
-        read_entry(f, name, it->second, child_path("delta_lambda_mm", name), defaults));
+        read_entry(f, name, it->second, controller::child_path("delta_lambda_mm", name), defaults));
   }
-  if (const auto rho = root["rho"]; present(rho)) {
+  if (const auto rho = root["rho"]; controller::present(rho)) {
     f.expect_map(rho, "rho");
     f.check_unique_keys(rho, "rho");
     for (auto it = rho.begin(); it != rho.end(); ++it) {
       const std::string name = it->first.Scalar();
-      const std::string path = child_path("rho", name);
+      const std::string path = controller::child_path("rho", name);
       RhoEntry r{name, f.number(it->second, path), path, it->second.Mark().line + 1};
       if (!(r.rho_n > 0.0))
-        f.fail(path, "rho must be positive, got " + number_text(r.rho_n) + " N", it->second);
+        f.fail(path, "rho must be positive, got " + controller::number_text(r.rho_n) + " N", it->second);
       spec.rho.push_back(r);
     }
   }
@@ -105,26 +105,26 @@ MotorPlanSpec plan_from(const YamlFile& f) {
 }  // namespace
 
 MotorPlanSpec read_motor_plan(const std::string& path) {
-  return plan_from(YamlFile::load(path));
+  return plan_from(controller::YamlFile::load(path));
 }
 
 MotorPlanSpec parse_motor_plan(const std::string& text, const std::string& source) {
-  return plan_from(YamlFile::parse(text, source));
+  return plan_from(controller::YamlFile::parse(text, source));
 }
 
 MotorPlan::MotorPlan(const MotorPlanSpec& spec, const std::vector<std::string>& muscle_names)
     : track_of_(muscle_names.size(), -1) {
   std::vector<std::string> set_by(muscle_names.size());
   for (const PlanEntry& e : spec.entries) {
-    const std::vector<int> members = select_muscles(e.name, muscle_names);
+    const std::vector<int> members = controller::select_muscles(e.name, muscle_names);
     if (members.empty())
-      throw InputError(spec.source, e.key_path,
+      throw controller::InputError(spec.source, e.key_path,
                        "no muscle is named '" + e.name + "' or starts with '" + e.name +
-                           "_' (the server's muscles: " + joined_names(muscle_names) + ")",
+                           "_' (the server's muscles: " + controller::joined_names(muscle_names) + ")",
                        e.line);
     for (int m : members) {
       if (track_of_[m] >= 0)
-        throw InputError(spec.source, e.key_path,
+        throw controller::InputError(spec.source, e.key_path,
                          "muscle " + muscle_names[m] + " is also set by " + set_by[m], e.line);
       track_of_[m] = static_cast<int>(tracks_.size());
       set_by[m] = e.key_path;
@@ -138,4 +138,4 @@ double MotorPlan::delta_lambda_mm(int muscle, double t) const {
   return track < 0 ? 0.0 : tracks_[static_cast<std::size_t>(track)].at(t);
 }
 
-}  // namespace tongue::controllers::ep
+}  // namespace tongue::ep_controller

@@ -18,7 +18,7 @@
 #include <utility>
 #include <vector>
 
-namespace tongue::controllers::ep {
+namespace tongue::ep_controller {
 
 // One muscle's (or group's) Delta-lambda over time.
 struct DeltaLambdaTrack {
@@ -72,4 +72,4 @@ class MotorPlan {
   std::vector<int> track_of_;  // per muscle, index into tracks_ or -1
 };
 
-}  // namespace tongue::controllers::ep
+}  // namespace tongue::ep_controller

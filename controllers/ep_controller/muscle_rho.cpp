@@ -2,9 +2,9 @@
 
 #include <stdexcept>
 
-#include "common/muscle_selection.hpp"
+#include "controller/muscle_selection.hpp"
 
-namespace tongue::controllers::ep {
+namespace tongue::ep_controller {
 
 std::optional<double> default_group_rho(const std::string& group) {
   static const std::map<std::string, double> table = {
@@ -28,11 +28,11 @@ std::vector<double> muscle_rhos(const std::vector<std::string>& muscle_names,
   };
   for (std::size_t m = 0; m < n; ++m) {
     if (rho[m]) continue;
-    const std::string group = muscle_group(muscle_names[m]);
-    if (const auto r = default_group_rho(group)) share(select_muscles(group, muscle_names), *r);
+    const std::string group = controller::muscle_group(muscle_names[m]);
+    if (const auto r = default_group_rho(group)) share(controller::select_muscles(group, muscle_names), *r);
   }
   for (const auto& [name, group_rho] : overrides)
-    share(select_muscles(name, muscle_names), group_rho);
+    share(controller::select_muscles(name, muscle_names), group_rho);
   std::vector<double> out(n);
   for (std::size_t m = 0; m < n; ++m) {
     if (!rho[m])
@@ -44,4 +44,4 @@ std::vector<double> muscle_rhos(const std::vector<std::string>& muscle_names,
   return out;
 }
 
-}  // namespace tongue::controllers::ep
+}  // namespace tongue::ep_controller

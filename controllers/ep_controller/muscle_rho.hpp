@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace tongue::controllers::ep {
+namespace tongue::ep_controller {
 
 // rho of a group of the built-in tongue [N], nullopt for other names. Payan & Perrier 1997 /
 // SPEECHart (DESIGN.md sec. 4: fibre cross-section x 0.22 N/mm^2): GG 5.2 (for each of GGp, GGm
@@ -27,4 +27,4 @@ std::vector<double> muscle_rhos(const std::vector<std::string>& muscle_names,
                                 const std::vector<double>& max_forces_n,
                                 const std::vector<std::pair<std::string, double>>& overrides);
 
-}  // namespace tongue::controllers::ep
+}  // namespace tongue::ep_controller

@@ -4,11 +4,11 @@
 #include <cmath>
 #include <stdexcept>
 
-#include "common/input_error.hpp"
-#include "common/muscle_selection.hpp"
-#include "common/number_text.hpp"
+#include "controller/input_error.hpp"
+#include "controller/muscle_selection.hpp"
+#include "controller/number_text.hpp"
 
-namespace tongue::controllers::replay {
+namespace tongue::replay {
 namespace {
 
 // Frame times may differ from k dt by the round-off of summing dt (about k eps dt); a millionth
@@ -17,16 +17,16 @@ constexpr double kTimeTolerance = 1e-6;  // fraction of dt
 
 }  // namespace
 
-void LogReplayer::start(const Model& model) {
+void LogReplayer::start(const controller::Model& model) {
   const auto fail = [&](const std::string& dataset, const std::string& reason) {
-    throw InputError(log_.path, dataset, reason);
+    throw controller::InputError(log_.path, dataset, reason);
   };
   std::vector<std::string> logged = log_.muscle_names, served = model.muscle_names;
   std::sort(logged.begin(), logged.end());
   std::sort(served.begin(), served.end());
   if (logged != served)
-    fail("/muscles/names", "the log's muscles (" + joined_names(log_.muscle_names) +
-                               ") are not the server's (" + joined_names(model.muscle_names) +
+    fail("/muscles/names", "the log's muscles (" + controller::joined_names(log_.muscle_names) +
+                               ") are not the server's (" + controller::joined_names(model.muscle_names) +
                                "): replay into a server running the same scene");
   if (!log_.max_forces_n.empty()) {
     for (std::size_t j = 0; j < log_.muscles(); ++j) {
@@ -36,8 +36,8 @@ void LogReplayer::start(const Model& model) {
           model.muscle_max_forces[static_cast<std::size_t>(it - model.muscle_names.begin())];
       if (served_force != log_.max_forces_n[j])
         fail("/muscles/max_force", log_.muscle_names[j] + " has F_max " +
-                                       number_text(log_.max_forces_n[j]) + " N in the log, " +
-                                       number_text(served_force) + " N on the server");
+                                       controller::number_text(log_.max_forces_n[j]) + " N in the log, " +
+                                       controller::number_text(served_force) + " N on the server");
     }
   }
   if (log_.resets > 0)
@@ -46,18 +46,18 @@ void LogReplayer::start(const Model& model) {
   for (std::size_t k = 0; k < log_.frames(); ++k) {
     const double expected = static_cast<double>(k) * model.dt;
     if (std::abs(log_.time_s[k] - expected) > kTimeTolerance * model.dt)
-      fail("/time", "frame " + std::to_string(k) + " is at " + number_text(log_.time_s[k]) +
+      fail("/time", "frame " + std::to_string(k) + " is at " + controller::number_text(log_.time_s[k]) +
                         " s, step " + std::to_string(k) + " of the server (dt " +
-                        number_text(model.dt) + " s) at " + number_text(expected) +
+                        controller::number_text(model.dt) + " s) at " + controller::number_text(expected) +
                         " s: the log must hold every step of one run with the server's dt");
   }
 }
 
-MuscleLevels LogReplayer::command(std::int64_t step) {
+controller::MuscleLevels LogReplayer::command(std::int64_t step) {
   if (step < 0 || static_cast<std::size_t>(step) >= log_.frames())
     throw std::out_of_range("step " + std::to_string(step) + " is beyond the log's " +
                             std::to_string(log_.frames()) + " frames");
-  MuscleLevels out;
+  controller::MuscleLevels out;
   out.names = log_.muscle_names;
   for (std::size_t j = 0; j < log_.muscles(); ++j)
     out.levels.push_back(log_.level(static_cast<std::size_t>(step), j));
@@ -69,4 +69,4 @@ std::string LogReplayer::summary() const {
          " muscles from " + log_.path;
 }
 
-}  // namespace tongue::controllers::replay
+}  // namespace tongue::replay

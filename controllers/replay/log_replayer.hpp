@@ -9,19 +9,19 @@
 #include <optional>
 #include <string>
 
-#include "common/controller.hpp"
+#include "controller/controller.hpp"
 #include "replay/run_log.hpp"
 
-namespace tongue::controllers::replay {
+namespace tongue::replay {
 
-class LogReplayer final : public Controller {
+class LogReplayer final : public controller::Controller {
  public:
   explicit LogReplayer(RunLog log) : log_(std::move(log)) {}
 
   // Throws InputError naming the run file and the dataset when the log does not fit the model.
-  void start(const Model& model) override;
-  void observe(const State&) override {}
-  MuscleLevels command(std::int64_t step) override;
+  void start(const controller::Model& model) override;
+  void observe(const controller::State&) override {}
+  controller::MuscleLevels command(std::int64_t step) override;
   std::optional<std::int64_t> last_step() const override {
     return static_cast<std::int64_t>(log_.frames()) - 1;
   }
@@ -31,4 +31,4 @@ class LogReplayer final : public Controller {
   RunLog log_;
 };
 
-}  // namespace tongue::controllers::replay
+}  // namespace tongue::replay

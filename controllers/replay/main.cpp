@@ -4,21 +4,21 @@
 // fresh server on the same scene repeats the logged run.
 #include <memory>
 
-#include "common/controller_main.hpp"
+#include "controller/controller_main.hpp"
 #include "replay/log_replayer.hpp"
 
 namespace {
 
-using namespace tongue::controllers;
+using namespace tongue;
 
-std::unique_ptr<Controller> make(const CommandLine& line) {
+std::unique_ptr<controller::Controller> make(const controller::CommandLine& line) {
   return std::make_unique<replay::LogReplayer>(replay::read_run_log(line.values.at("--log")));
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  ProgramSpec spec;
+  controller::ProgramSpec spec;
   spec.name = "replay";
   spec.synopsis = "--log RUN.h5";
   spec.options_usage =
@@ -27,5 +27,5 @@ int main(int argc, char** argv) {
   spec.options = {"--log"};
   spec.required_options = {"--log"};
   spec.make_controller = make;
-  return controller_main(argc, argv, spec);
+  return controller::controller_main(argc, argv, spec);
 }

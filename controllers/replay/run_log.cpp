@@ -5,10 +5,10 @@
 #include <cmath>
 #include <cstdlib>
 
-#include "common/input_error.hpp"
-#include "common/number_text.hpp"
+#include "controller/input_error.hpp"
+#include "controller/number_text.hpp"
 
-namespace tongue::controllers::replay {
+namespace tongue::replay {
 namespace {
 
 // Owns one HDF5 identifier and closes it with the matching H5?close.
@@ -51,11 +51,11 @@ class Reader {
  public:
   explicit Reader(const std::string& path)
       : path_(path), file_(H5Fopen(path.c_str(), H5F_ACC_RDONLY, H5P_DEFAULT), H5Fclose) {
-    if (!file_.valid()) throw InputError(path, "", "cannot open as an HDF5 run file");
+    if (!file_.valid()) throw controller::InputError(path, "", "cannot open as an HDF5 run file");
   }
 
   [[noreturn]] void fail(const std::string& dataset, const std::string& reason) const {
-    throw InputError(path_, dataset, reason);
+    throw controller::InputError(path_, dataset, reason);
   }
 
   bool exists(const std::string& name) const {
@@ -154,7 +154,7 @@ RunLog read_run_log(const std::string& path) {
       const double level = log.level(k, j);
       if (!std::isfinite(level) || level < 0.0 || level > 1.0)
         r.fail("/activations", "frame " + std::to_string(k) + ", " + log.muscle_names[j] + ": " +
-                                   number_text(level) + " is not a level in [0, 1]");
+                                   controller::number_text(level) + " is not a level in [0, 1]");
     }
   }
   if (r.exists("/muscles/max_force")) {
@@ -167,4 +167,4 @@ RunLog read_run_log(const std::string& path) {
   return log;
 }
 
-}  // namespace tongue::controllers::replay
+}  // namespace tongue::replay

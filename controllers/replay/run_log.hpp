@@ -1,11 +1,11 @@
 #pragma once
-// The parts of an HDF5 run file (layout: sim_server/logging/position_log.hpp) that a replay needs:
+// The parts of an HDF5 run file (layout: sim_server/run_file/run_file_writer.hpp) that a replay needs:
 // the time of each frame, the muscles' names and F_max, and the activation levels of each frame.
 #include <cstddef>
 #include <string>
 #include <vector>
 
-namespace tongue::controllers::replay {
+namespace tongue::replay {
 
 struct RunLog {
   std::string path;
@@ -27,4 +27,4 @@ struct RunLog {
 // /time and M that of /muscles/names), or a level is not a finite number in [0, 1].
 RunLog read_run_log(const std::string& path);
 
-}  // namespace tongue::controllers::replay
+}  // namespace tongue::replay

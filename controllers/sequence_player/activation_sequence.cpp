@@ -3,15 +3,15 @@
 #include <algorithm>
 #include <cmath>
 
-#include "common/input_error.hpp"
-#include "common/muscle_selection.hpp"
-#include "common/number_text.hpp"
-#include "common/yaml_file.hpp"
+#include "controller/input_error.hpp"
+#include "controller/muscle_selection.hpp"
+#include "controller/number_text.hpp"
+#include "controller/yaml_file.hpp"
 
-namespace tongue::controllers::sequence {
+namespace tongue::sequence_player {
 namespace {
 
-SequenceEntry read_entry(const YamlFile& f, const YAML::Node& n, const std::string& path) {
+SequenceEntry read_entry(const controller::YamlFile& f, const YAML::Node& n, const std::string& path) {
   f.expect_map(n, path);
   f.check_keys(n, path,
                {"muscle", "start", "end", "level", "force", "level_from", "level_to", "force_from",
@@ -19,23 +19,23 @@ SequenceEntry read_entry(const YamlFile& f, const YAML::Node& n, const std::stri
   SequenceEntry e;
   e.key_path = path;
   e.line = n.Mark().line + 1;
-  e.muscle = f.text(f.required(n, path, "muscle"), child_path(path, "muscle"));
-  if (const auto v = n["start"]; present(v))
-    e.start_s = f.non_negative(v, child_path(path, "start"), "s");
-  const bool has_end = present(n["end"]);
+  e.muscle = f.text(f.required(n, path, "muscle"), controller::child_path(path, "muscle"));
+  if (const auto v = n["start"]; controller::present(v))
+    e.start_s = f.non_negative(v, controller::child_path(path, "start"), "s");
+  const bool has_end = controller::present(n["end"]);
   if (has_end) {
-    e.end_s = f.number(n["end"], child_path(path, "end"));
+    e.end_s = f.number(n["end"], controller::child_path(path, "end"));
     if (!(e.end_s > e.start_s))
-      f.fail(child_path(path, "end"),
-             "must be after start (" + number_text(e.start_s) + " s), got " + number_text(e.end_s) +
+      f.fail(controller::child_path(path, "end"),
+             "must be after start (" + controller::number_text(e.start_s) + " s), got " + controller::number_text(e.end_s) +
                  " s",
              n["end"]);
   }
 
   // Exactly one way of giving the value.
-  const bool level = present(n["level"]), force = present(n["force"]);
-  const bool level_ramp = present(n["level_from"]) || present(n["level_to"]);
-  const bool force_ramp = present(n["force_from"]) || present(n["force_to"]);
+  const bool level = controller::present(n["level"]), force = controller::present(n["force"]);
+  const bool level_ramp = controller::present(n["level_from"]) || controller::present(n["level_to"]);
+  const bool force_ramp = controller::present(n["force_from"]) || controller::present(n["force_to"]);
   if (level + force + level_ramp + force_ramp != 1)
     f.fail(path,
            "give exactly one of level, force (a step), level_from + level_to, force_from + "
@@ -43,12 +43,12 @@ SequenceEntry read_entry(const YamlFile& f, const YAML::Node& n, const std::stri
            n);
   e.unit = level || level_ramp ? SequenceEntry::Unit::level : SequenceEntry::Unit::force;
   const auto value = [&](const char* key) {
-    const std::string p = child_path(path, key);
+    const std::string p = controller::child_path(path, key);
     const YAML::Node v = f.required(n, path, key);
     if (e.unit == SequenceEntry::Unit::level) {
       const double x = f.number(v, p);
       if (x < 0.0 || x > 1.0)
-        f.fail(p, "a level must be in [0, 1] of F_max, got " + number_text(x), v);
+        f.fail(p, "a level must be in [0, 1] of F_max, got " + controller::number_text(x), v);
       return x;
     }
     return f.non_negative(v, p, "N");
@@ -60,12 +60,12 @@ SequenceEntry read_entry(const YamlFile& f, const YAML::Node& n, const std::stri
     const std::string stem = level_ramp ? "level" : "force";
     e.from = value((stem + "_from").c_str());
     e.to = value((stem + "_to").c_str());
-    if (!has_end) f.fail(child_path(path, "end"), "a ramp needs an end time", n);
+    if (!has_end) f.fail(controller::child_path(path, "end"), "a ramp needs an end time", n);
   }
   return e;
 }
 
-SequenceSpec sequence_from(const YamlFile& f) {
+SequenceSpec sequence_from(const controller::YamlFile& f) {
   const YAML::Node& root = f.root();
   f.expect_map(root, "(top level)");
   f.check_keys(root, "", {"duration", "entries"});
@@ -73,10 +73,10 @@ SequenceSpec sequence_from(const YamlFile& f) {
   f.expect_sequence(list, "entries");
   SequenceSpec spec;
   spec.source = f.source();
-  if (const auto d = root["duration"]; present(d)) {
+  if (const auto d = root["duration"]; controller::present(d)) {
     spec.duration_s = f.number(d, "duration");
     if (!(*spec.duration_s > 0.0))
-      f.fail("duration", "must be positive, got " + number_text(*spec.duration_s) + " s", d);
+      f.fail("duration", "must be positive, got " + controller::number_text(*spec.duration_s) + " s", d);
   }
   for (std::size_t i = 0; i < list.size(); ++i)
     spec.entries.push_back(read_entry(f, list[i], index_path("entries", i)));
@@ -91,11 +91,11 @@ std::int64_t steps_covering(double duration_s, double dt_s) {
 }
 
 SequenceSpec read_sequence(const std::string& path) {
-  return sequence_from(YamlFile::load(path));
+  return sequence_from(controller::YamlFile::load(path));
 }
 
 SequenceSpec parse_sequence(const std::string& text, const std::string& source) {
-  return sequence_from(YamlFile::parse(text, source));
+  return sequence_from(controller::YamlFile::parse(text, source));
 }
 
 ActivationSequence::ActivationSequence(const SequenceSpec& spec,
@@ -105,11 +105,11 @@ ActivationSequence::ActivationSequence(const SequenceSpec& spec,
   std::vector<bool> driven(muscle_names.size(), false);
   for (const SequenceEntry& e : spec.entries) {
     Resolved r;
-    r.muscles = select_muscles(e.muscle, muscle_names);
+    r.muscles = controller::select_muscles(e.muscle, muscle_names);
     if (r.muscles.empty())
-      throw InputError(spec.source, child_path(e.key_path, "muscle"),
+      throw controller::InputError(spec.source, controller::child_path(e.key_path, "muscle"),
                        "no muscle is named '" + e.muscle + "' or starts with '" + e.muscle +
-                           "_' (the server's muscles: " + joined_names(muscle_names) + ")",
+                           "_' (the server's muscles: " + controller::joined_names(muscle_names) + ")",
                        e.line);
     r.start_s = e.start_s;
     r.end_s = e.end_s;
@@ -123,9 +123,9 @@ ActivationSequence::ActivationSequence(const SequenceSpec& spec,
       const double largest = std::max(e.from, e.to);
       // Round-off in a force written as the exact sum must not reject it.
       if (largest > total * (1.0 + 1e-12))
-        throw InputError(spec.source, e.key_path,
-                         number_text(largest) + " N exceeds the summed F_max of " + e.muscle +
-                             ", " + number_text(total) + " N",
+        throw controller::InputError(spec.source, e.key_path,
+                         controller::number_text(largest) + " N exceeds the summed F_max of " + e.muscle +
+                             ", " + controller::number_text(total) + " N",
                          e.line);
       r.from_level = std::min(1.0, e.from / total);
       r.to_level = std::min(1.0, e.to / total);
@@ -137,7 +137,7 @@ ActivationSequence::ActivationSequence(const SequenceSpec& spec,
     if (driven[m]) driven_.push_back(static_cast<int>(m));
 }
 
-MuscleLevels ActivationSequence::levels_at(double t) const {
+controller::MuscleLevels ActivationSequence::levels_at(double t) const {
   std::vector<double> level(names_.size(), 0.0);
   for (const Resolved& r : entries_) {
     if (t < r.start_s - kTimeTolerance || t > r.end_s + kTimeTolerance) continue;
@@ -148,7 +148,7 @@ MuscleLevels ActivationSequence::levels_at(double t) const {
     }
     for (int m : r.muscles) level[m] = value;
   }
-  MuscleLevels out;
+  controller::MuscleLevels out;
   for (int m : driven_) {
     out.names.push_back(names_[m]);
     out.levels.push_back(level[m]);
@@ -156,4 +156,4 @@ MuscleLevels ActivationSequence::levels_at(double t) const {
   return out;
 }
 
-}  // namespace tongue::controllers::sequence
+}  // namespace tongue::sequence_player

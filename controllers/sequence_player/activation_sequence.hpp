@@ -22,9 +22,9 @@
 #include <string>
 #include <vector>
 
-#include "common/controller_bus.hpp"
+#include "controller/controller_bus.hpp"
 
-namespace tongue::controllers::sequence {
+namespace tongue::sequence_player {
 
 struct SequenceEntry {
   enum class Unit { level, force };
@@ -67,7 +67,7 @@ class ActivationSequence {
                      const std::vector<double>& max_forces_n);
 
   // Levels at time t [s] of every muscle some entry names (model order).
-  MuscleLevels levels_at(double t) const;
+  controller::MuscleLevels levels_at(double t) const;
   const std::vector<int>& driven_muscles() const { return driven_; }
 
  private:
@@ -82,4 +82,4 @@ class ActivationSequence {
   std::vector<int> driven_;
 };
 
-}  // namespace tongue::controllers::sequence
+}  // namespace tongue::sequence_player

@@ -4,22 +4,22 @@
 // step by step: the levels at (k + 1) dt for step k + 1.
 #include <memory>
 
-#include "common/controller_main.hpp"
+#include "controller/controller_main.hpp"
 #include "sequence_player/sequence_player.hpp"
 
 namespace {
 
-using namespace tongue::controllers;
+using namespace tongue;
 
-std::unique_ptr<Controller> make(const CommandLine& line) {
-  return std::make_unique<sequence::SequencePlayer>(
-      sequence::read_sequence(line.values.at("--schedule")));
+std::unique_ptr<controller::Controller> make(const controller::CommandLine& line) {
+  return std::make_unique<sequence_player::SequencePlayer>(
+      sequence_player::read_sequence(line.values.at("--schedule")));
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  ProgramSpec spec;
+  controller::ProgramSpec spec;
   spec.name = "sequence_player";
   spec.synopsis = "--schedule FILE";
   spec.options_usage =
@@ -28,5 +28,5 @@ int main(int argc, char** argv) {
   spec.options = {"--schedule"};
   spec.required_options = {"--schedule"};
   spec.make_controller = make;
-  return controller_main(argc, argv, spec);
+  return controller::controller_main(argc, argv, spec);
 }

@@ -5,18 +5,18 @@
 #include <optional>
 #include <string>
 
-#include "common/controller.hpp"
+#include "controller/controller.hpp"
 #include "sequence_player/activation_sequence.hpp"
 
-namespace tongue::controllers::sequence {
+namespace tongue::sequence_player {
 
-class SequencePlayer final : public Controller {
+class SequencePlayer final : public controller::Controller {
  public:
   explicit SequencePlayer(SequenceSpec spec) : spec_(std::move(spec)) {}
 
-  void start(const Model& model) override;
-  void observe(const State&) override {}
-  MuscleLevels command(std::int64_t step) override;
+  void start(const controller::Model& model) override;
+  void observe(const controller::State&) override {}
+  controller::MuscleLevels command(std::int64_t step) override;
   std::optional<std::int64_t> last_step() const override { return last_step_; }
   std::string summary() const override;
 
@@ -27,4 +27,4 @@ class SequencePlayer final : public Controller {
   std::optional<std::int64_t> last_step_;
 };
 
-}  // namespace tongue::controllers::sequence
+}  // namespace tongue::sequence_player

@@ -12,7 +12,7 @@
 
 extern char** environ;
 
-namespace tongue::experiments {
+namespace tongue::runner {
 
 ChildProcess::ChildProcess(const std::vector<std::string>& argv,
                            const std::filesystem::path& folder, const std::filesystem::path& out,
@@ -81,4 +81,4 @@ bool succeeded(int s) {
   return WIFEXITED(s) && WEXITSTATUS(s) == 0;
 }
 
-}  // namespace tongue::experiments
+}  // namespace tongue::runner

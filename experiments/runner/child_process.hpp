@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-namespace tongue::experiments {
+namespace tongue::runner {
 
 class ChildProcess {
  public:
@@ -39,4 +39,4 @@ std::string describe_status(int wait_status);
 // True for a normal exit with status 0.
 bool succeeded(int wait_status);
 
-}  // namespace tongue::experiments
+}  // namespace tongue::runner

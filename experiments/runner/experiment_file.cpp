@@ -7,7 +7,7 @@
 
 #include "bus/channels.hpp"
 
-namespace tongue::experiments {
+namespace tongue::runner {
 namespace {
 
 namespace fs = std::filesystem;
@@ -137,4 +137,4 @@ Experiment read_experiment(const fs::path& path) {
   return e;
 }
 
-}  // namespace tongue::experiments
+}  // namespace tongue::runner

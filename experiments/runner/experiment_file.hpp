@@ -23,7 +23,7 @@
 #include <string>
 #include <vector>
 
-namespace tongue::experiments {
+namespace tongue::runner {
 
 struct ProcessSpec {
   std::string name;
@@ -59,4 +59,4 @@ class ExperimentError : public std::runtime_error {
 // is checked by the scene reader.
 Experiment read_experiment(const std::filesystem::path& path);
 
-}  // namespace tongue::experiments
+}  // namespace tongue::runner

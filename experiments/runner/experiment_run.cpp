@@ -23,7 +23,7 @@
 #include "run_folder.hpp"
 #include "scene/scene_reader.hpp"
 
-namespace tongue::experiments {
+namespace tongue::runner {
 namespace {
 
 namespace fs = std::filesystem;
@@ -345,4 +345,4 @@ RunOutcome run_experiment(const Experiment& e, const RunSettings& settings,
   return outcome;
 }
 
-}  // namespace tongue::experiments
+}  // namespace tongue::runner

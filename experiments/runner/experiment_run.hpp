@@ -8,7 +8,7 @@
 
 #include "experiment_file.hpp"
 
-namespace tongue::experiments {
+namespace tongue::runner {
 
 struct RunSettings {
   std::filesystem::path root = "logs";  // run folders go under it
@@ -28,4 +28,4 @@ struct RunOutcome {
 RunOutcome run_experiment(const Experiment& experiment, const RunSettings& settings,
                           const volatile std::sig_atomic_t& interrupted);
 
-}  // namespace tongue::experiments
+}  // namespace tongue::runner

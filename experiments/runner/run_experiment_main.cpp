@@ -36,7 +36,7 @@ void print_usage(std::FILE* to) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  using namespace tongue::experiments;
+  using namespace tongue::runner;
   std::string path;
   RunSettings settings;
   int port = 0;

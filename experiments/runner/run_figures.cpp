@@ -8,7 +8,7 @@
 #include <memory>
 #include <stdexcept>
 
-namespace tongue::experiments {
+namespace tongue::runner {
 namespace {
 
 // The landmark node sets of the built-in tongue, in the order a summary lists them.
@@ -139,4 +139,4 @@ std::optional<BusFigures> read_bus_figures(const std::filesystem::path& lcm_log,
   return b;
 }
 
-}  // namespace tongue::experiments
+}  // namespace tongue::runner

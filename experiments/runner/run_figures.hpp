@@ -1,13 +1,13 @@
 #pragma once
 // The figures a run summary quotes, read back from what the run left on disk: the HDF5 run file
-// (sim_server/logging/position_log.hpp) and the LCM log of the bus.
+// (sim_server/run_file/run_file_writer.hpp) and the LCM log of the bus.
 #include <array>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <vector>
 
-namespace tongue::experiments {
+namespace tongue::runner {
 
 struct LandmarkMotion {
   std::string name;                  // a landmark node set: tip, velar_dorsum, ...
@@ -40,4 +40,4 @@ std::optional<BusFigures> read_bus_figures(const std::filesystem::path& lcm_log,
                                            const std::string& state_channel,
                                            const std::string& activation_channel);
 
-}  // namespace tongue::experiments
+}  // namespace tongue::runner

@@ -4,7 +4,7 @@
 #include <stdexcept>
 #include <system_error>
 
-namespace tongue::experiments {
+namespace tongue::runner {
 
 std::filesystem::path make_run_folder(const std::filesystem::path& root, const std::string& name) {
   namespace fs = std::filesystem;
@@ -30,4 +30,4 @@ std::filesystem::path make_run_folder(const std::filesystem::path& root, const s
   return folder;
 }
 
-}  // namespace tongue::experiments
+}  // namespace tongue::runner

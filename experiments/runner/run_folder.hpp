@@ -4,10 +4,10 @@
 #include <filesystem>
 #include <string>
 
-namespace tongue::experiments {
+namespace tongue::runner {
 
 // Creates the folder (and root); a second run within the same second gets a suffix -2, -3, ...
 // Throws std::runtime_error when it cannot be created.
 std::filesystem::path make_run_folder(const std::filesystem::path& root, const std::string& name);
 
-}  // namespace tongue::experiments
+}  // namespace tongue::runner

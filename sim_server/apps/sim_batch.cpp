@@ -20,13 +20,13 @@
 #include <string>
 
 #include "fem/assembly/ellipticity_monitor.hpp"
-#include "fem/integrator/newmark_integrator.hpp"
+#include "scene_run/scene_run.hpp"
 #include "fem/integrator/static_solver.hpp"
-#include "logging/position_log.hpp"
-#include "logging/scene_run_file.hpp"
+#include "run_file/run_file_writer.hpp"
+#include "scene_run/scene_run_file.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_reader.hpp"
-#include "tongue/default_tongue.hpp"
+#include "model/default_tongue.hpp"
 
 namespace tongue::apps {
 namespace {
@@ -108,22 +108,27 @@ struct Tally {
     wall += r.wall_seconds;
     residual = r.final_residual;
   }
-  logging::SolverFigures figures() const { return {iterations, residual, wall, cuts}; }
+  run_file::SolverFigures figures() const { return {iterations, residual, wall, cuts}; }
 };
 
 class BatchRun {
  public:
   BatchRun(const scene::Scene& scene, scene::BuiltScene built, const std::string& output,
            bool quiet)
-      : scene_(scene), built_(std::move(built)), quiet_(quiet) {
-    const fem::SolidModel& solid = *built_.solid;
-    if (!output.empty()) log_ = logging::open_scene_run_file(output, scene_, built_);
+      : scene_(scene), quiet_(quiet) {
+    if (is_dynamic()) {
+      run_ = std::make_unique<scene_run::SceneRun>(scene_, std::move(built));
+    } else {
+      built_ = std::move(built);
+    }
+    const fem::SolidModel& solid = *this->built().solid;
+    if (!output.empty()) log_ = scene_run::open_scene_run_file(output, scene_, this->built());
     std::printf(
         "%s: %d nodes, %d hex8, %d free dofs, mass %.4g kg, volume %.4g cm^3, %d muscles, %s "
         "analysis\n",
         scene_.source.c_str(), solid.mesh().num_nodes(), solid.mesh().num_elements(),
         solid.dofs().num_free(), solid.total_mass(), solid.reference_volume() * 1e6,
-        built_.muscles ? built_.muscles->num_muscles() : 0, is_dynamic() ? "dynamic" : "static");
+        built().muscles ? built().muscles->num_muscles() : 0, is_dynamic() ? "dynamic" : "static");
     if (log_) {
       std::printf("run file: %s\n", output.c_str());
     } else {
@@ -158,16 +163,16 @@ class BatchRun {
 
   // Static equilibrium by load stepping: the rest frame, then one frame per load increment.
   int run_static() {
-    fem::Vector u = fem::Vector::Zero(built_.solid->num_dofs());
+    fem::Vector u = fem::Vector::Zero(built().solid->num_dofs());
     set_activations(0.0);
     initial_u_ = u;
-    write_frame(0.0, u, nullptr, {});
+    write_frame(0.0, u, scene_run::scene_muscle_frame(built(), u, nullptr), {});
     Tally tally;
     header("incr", "lambda [1]");
     // One frame per accepted load increment, written as it is reached: a failure later keeps
     // everything up to the last accepted increment.
     const fem::StaticReport report =
-        fem::solve_static(*built_.system, u, built_.static_settings,
+        fem::solve_static(*built().system, u, built().static_settings,
                           [&](const fem::StepReport& inc, const fem::Vector& reached) {
                             Tally one;
                             one.add(inc);
@@ -175,7 +180,9 @@ class BatchRun {
                             step_line(tally.steps, inc.time, inc);
                             track(reached);
                             check_material(inc.time, reached);
-                            write_frame(inc.time, reached, nullptr, one.figures());
+                            write_frame(inc.time, reached,
+                                        scene_run::scene_muscle_frame(built(), reached, nullptr),
+                                        one.figures());
                           });
     total_.steps += tally.steps;
     total_.iterations += tally.iterations;
@@ -190,38 +197,26 @@ class BatchRun {
 
   int run_dynamic() {
     const scene::AnalysisSpec& a = scene_.analysis;
-    const int n = built_.solid->num_dofs();
-    fem::Vector u = fem::Vector::Zero(n);
+    scene_run::SceneRun& run = *run_;
+    const fem::StaticReport settled = run.start();
     Tally settle;
     if (a.settle) {
-      // Rest under gravity and loads is the state before any muscle acts (all levels are 0
-      // until the first step sets them).
-      const fem::StaticReport report = fem::solve_static(*built_.system, u, built_.static_settings);
-      for (const fem::StepReport& inc : report.increments) settle.add(inc);
+      for (const fem::StepReport& inc : settled.increments) settle.add(inc);
       if (!quiet_)
         std::printf(
             "settle: %d increments, %d iterations, %d cuts, residual %.3e N, wall %.1f ms\n",
             settle.steps, settle.iterations, settle.cuts, settle.residual, settle.wall * 1e3);
       total_.iterations += settle.iterations;
       total_.cuts += settle.cuts;
-      if (!report.converged) {
-        failure_ = "settling: " + report.message;
-        std::fprintf(stderr, "sim_batch: settling failed: %s\n", report.message.c_str());
+      if (!settled.converged) {
+        failure_ = "settling: " + settled.message;
+        std::fprintf(stderr, "sim_batch: settling failed: %s\n", settled.message.c_str());
         return kExitNotConverged;
       }
     }
-    // Damping's K0 is the tangent where the integrator is initialized: the settled state if
-    // the scene settles, else the rest state. The initial acceleration is taken with every
-    // muscle off, and the muscles act from the first step on (levels at its end time): a step
-    // of force in a_0 would make the average-acceleration scheme's velocities flip sign from
-    // step to step in the stiff modes the fibre end forces excite.
-    if (built_.muscles)
-      built_.muscles->set_activations(fem::Vector::Zero(built_.muscles->num_muscles()));
-    fem::NewmarkIntegrator integrator(*built_.system, built_.dynamic_settings);
-    integrator.initialize(u, fem::Vector::Zero(n), 0.0);
-    initial_u_ = integrator.displacement();
-    track(integrator.displacement());
-    write_frame(0.0, integrator.displacement(), &integrator.velocity(), settle.figures());
+    initial_u_ = run.displacement();
+    track(run.displacement());
+    write_frame(0.0, run.displacement(), run.muscle_frame(), settle.figures());
 
     const int count = scene::time_step_count(a);
     const int every = scene_.output.every;
@@ -229,57 +224,66 @@ class BatchRun {
     Tally since_frame;
     for (int s = 0; s < count; ++s) {
       if (g_interrupted) {
-        std::fprintf(stderr, "sim_batch: interrupted at t = %.6g s\n", integrator.time());
+        std::fprintf(stderr, "sim_batch: interrupted at t = %.6g s\n", run.time());
         return kExitInterrupted;
       }
-      const double t0 = integrator.time();
+      const double t0 = run.time();
       const double dt = scene::time_step_length(a, s);
-      set_activations(t0 + dt);
-      const fem::StepReport r = integrator.step(dt);
-      since_frame.add(r);
+      const scene_run::StepResult r = run.step(dt, levels_at(t0 + dt));
+      since_frame.add(r.report);
       ++total_.steps;
-      total_.iterations += r.iterations;
-      total_.cuts += r.cuts;
-      stepping_.add(r);
-      step_line(s + 1, r.time, r);
-      if (!r.converged) {
-        failure_ = r.message;
+      total_.iterations += r.report.iterations;
+      total_.cuts += r.report.cuts;
+      stepping_.add(r.report);
+      step_line(s + 1, r.report.time, r.report);
+      if (!r.report.converged) {
+        failure_ = r.report.message;
         std::fprintf(stderr,
                      "sim_batch: step %d (from t = %.6g s, dt = %.6g s) failed to converge: %s\n",
-                     s + 1, t0, r.dt, r.message.c_str());
+                     s + 1, t0, r.report.dt, r.report.message.c_str());
         return kExitNotConverged;
       }
-      simulated_ = integrator.time();
-      track(integrator.displacement());
-      check_material(integrator.time(), integrator.displacement());
+      simulated_ = run.time();
+      track(run.displacement());
+      if (r.ellipticity_loss) material_warning(run.time(), r.material_warning);
       if ((s + 1) % every == 0 || s + 1 == count) {
-        write_frame(integrator.time(), integrator.displacement(), &integrator.velocity(),
-                    since_frame.figures());
+        write_frame(run.time(), run.displacement(), r.muscles, since_frame.figures());
         since_frame = Tally{};
       }
     }
     return kExitOk;
   }
 
+  // The scene's activation levels at time t (none without muscles).
+  fem::Vector levels_at(double t) const {
+    return built().muscles ? built().activations.levels_at(t) : fem::Vector();
+  }
+
+  // A dynamic scene is built into its run; a static one stays here.
+  const scene::BuiltScene& built() const { return run_ ? run_->built() : built_; }
+
   // Says once, on stderr and in the run file, when the material first loses strong ellipticity.
-  void check_material(double t, const fem::Vector& u) {
-    const auto loss = monitor_.first_loss(u);
-    if (!loss) return;
-    const std::string text = fem::describe(*loss, built_.solid->material());
+  void material_warning(double t, const std::string& text) {
     std::fprintf(stderr, "sim_batch: warning: at t = %.6g s %s\n", t, text.c_str());
     if (log_) log_->set_attribute("material_warning", "t = " + std::to_string(t) + " s: " + text);
   }
 
+  // A static run's check of the material at each increment (a dynamic run's is in SceneRun).
+  void check_material(double t, const fem::Vector& u) {
+    if (!monitor_) monitor_ = std::make_unique<fem::EllipticityMonitor>(*built().solid);
+    if (const auto loss = monitor_->first_loss(u))
+      material_warning(t, fem::describe(*loss, built().solid->material()));
+  }
+
   void set_activations(double t) {
-    if (built_.muscles) built_.muscles->set_activations(built_.activations.levels_at(t));
+    if (built().muscles) built().muscles->set_activations(built().activations.levels_at(t));
   }
 
   // v: nodal velocities, null for a static frame (at rest).
-  void write_frame(double time, const fem::Vector& u, const fem::Vector* v,
-                   const logging::SolverFigures& figures) {
+  void write_frame(double time, const fem::Vector& u, const run_file::MuscleFrame& muscles,
+                   const run_file::SolverFigures& figures) {
     if (!log_) return;
-    const logging::MuscleFrame muscles = logging::scene_muscle_frame(built_, u, v);
-    log_->append(time, built_.solid->rest_positions() + u, figures, muscles);
+    log_->append(time, built().solid->rest_positions() + u, figures, muscles);
   }
 
   // Largest nodal displacement and volume change seen so far.
@@ -289,7 +293,7 @@ class BatchRun {
     for (int node = 0; node < u.size() / 3; ++node)
       final_displacement_ = std::max(final_displacement_, u.segment<3>(3 * node).norm());
     max_displacement_ = std::max(max_displacement_, final_displacement_);
-    const fem::SolidModel& solid = *built_.solid;
+    const fem::SolidModel& solid = *built().solid;
     volume_change_ = solid.current_volume(u) / solid.reference_volume() - 1.0;
     max_volume_change_ = std::max(max_volume_change_, std::abs(volume_change_));
   }
@@ -339,7 +343,7 @@ class BatchRun {
   // (the settled state when the scene settles) to the last state reached.
   void landmarks() const {
     if (initial_u_.size() == 0 || last_u_.size() != initial_u_.size()) return;
-    const fem::Mesh& mesh = built_.solid->mesh();
+    const fem::Mesh& mesh = built().solid->mesh();
     bool first = true;
     for (const std::string& name : model::landmark_names()) {
       const auto it = mesh.node_sets.find(name);
@@ -360,11 +364,12 @@ class BatchRun {
   const scene::Scene& scene_;
   scene::BuiltScene built_;
   bool quiet_;
-  std::unique_ptr<logging::PositionLog> log_;
+  std::unique_ptr<run_file::RunFileWriter> log_;
   Tally total_;
   Tally stepping_;  // the dynamic steps alone
   std::string failure_;
-  fem::EllipticityMonitor monitor_{*built_.solid};
+  std::unique_ptr<scene_run::SceneRun> run_;         // a dynamic scene's run
+  std::unique_ptr<fem::EllipticityMonitor> monitor_;  // a static run's
   double wall_ = 0.0, simulated_ = 0.0;
   double max_displacement_ = 0.0, final_displacement_ = 0.0;  // m
   double volume_change_ = 0.0, max_volume_change_ = 0.0;      // relative

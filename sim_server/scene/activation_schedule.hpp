@@ -6,7 +6,7 @@
 
 #include "fem/types.hpp"
 #include "scene/scene.hpp"
-#include "tongue/muscle.hpp"
+#include "model/muscle.hpp"
 
 namespace tongue::scene {
 

@@ -15,7 +15,7 @@
 //     ansys: {nodes: file.node, elements: file.elem, length_scale: 0.001}
 //         # NWRITE/EWRITE text files; length_scale (default 1) turns file units into metres.
 //         # The mesh's node sets: all and mat_<n> (the nodes of the elements of material n).
-//     tongue: {refinement: 1}      # the built-in tongue (tongue/default_tongue.hpp); refinement
+//     tongue: {refinement: 1}      # the built-in tongue (model/default_tongue.hpp); refinement
 //         # 1..8 (default 1) multiplies the elements along each grid direction. Its node sets:
 //         # mandible, root_bottom, hyoid, midsagittal, the landmarks tip, blade, palatal_dorsum,
 //         # velar_dorsum, root, gg_insertion (one node each); its element sets: all and one per
@@ -55,7 +55,7 @@
 //                                  # fully contracted), linear in the activation in between.
 //   muscle_force_length: 0.5       # optional; needs muscles. Length of a fibre segment, relative
 //                                  # to its rest length, at which its active tension has fallen
-//                                  # to 0 (Hill's ascending limb, tongue/force_length.hpp), in
+//                                  # to 0 (Hill's ascending limb, model/force_length.hpp), in
 //                                  # [0, 1); default 0.5 (Zajac 1989). "constant": the plain
 //                                  # fibre model, tension independent of length.
 //   activations:                   # optional; needs muscles. Steps of activation, each naming
@@ -104,8 +104,8 @@
 #include "fem/integrator/newmark_integrator.hpp"
 #include "fem/solver/newton_solver.hpp"
 #include "fem/types.hpp"
-#include "tongue/active_stiffening.hpp"
-#include "tongue/force_length.hpp"
+#include "model/active_stiffening.hpp"
+#include "model/force_length.hpp"
 
 namespace tongue::scene {
 
@@ -221,9 +221,9 @@ struct Scene {
   MuscleSource muscle_source = MuscleSource::none;
   std::vector<MuscleSpec> muscles;  // MuscleSource::list, in file order
   std::vector<ActivationSpec> activations;
-  // E_contracted / E_rest of active muscle tissue (tongue/active_stiffening.hpp); 1: none.
+  // E_contracted / E_rest of active muscle tissue (model/active_stiffening.hpp); 1: none.
   double muscle_stiffening = model::kContractedToRestStiffness;
-  // Active force-length relation of every fibre segment (tongue/force_length.hpp).
+  // Active force-length relation of every fibre segment (model/force_length.hpp).
   model::ActiveForceLength muscle_force_length;
   AnalysisSpec analysis;
   // The solver block over fem::NewtonSettings' defaults, and the keys it gave: a dynamic

@@ -1,7 +1,7 @@
 #include "scene/scene_builder.hpp"
 #include "scene/number_text.hpp"
 
-#include "tongue/active_stiffening.hpp"
+#include "model/active_stiffening.hpp"
 
 #include <algorithm>
 #include <charconv>
@@ -16,7 +16,7 @@
 #include "fem/mesh/ansys_reader.hpp"
 #include "fem/mesh/box_generator.hpp"
 #include "scene/scene_reader.hpp"
-#include "tongue/default_tongue.hpp"
+#include "model/default_tongue.hpp"
 
 namespace tongue::scene {
 

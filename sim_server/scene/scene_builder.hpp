@@ -11,7 +11,7 @@
 #include "fem/integrator/static_solver.hpp"
 #include "scene/activation_schedule.hpp"
 #include "scene/scene.hpp"
-#include "tongue/muscle_forces.hpp"
+#include "model/muscle_forces.hpp"
 
 namespace tongue::scene {
 

@@ -13,8 +13,8 @@
 #include <sstream>
 
 #include "fem/material/material_factory.hpp"
-#include "tongue/default_tongue.hpp"
-#include "tongue/tongue_muscles.hpp"
+#include "model/default_tongue.hpp"
+#include "model/tongue_muscles.hpp"
 
 namespace tongue::scene {
 
@@ -57,7 +57,7 @@ const std::vector<std::string>& box_set_names() {
   return names;
 }
 
-// The built-in muscles' names, by the convention of tongue/tongue_muscles.hpp: "<group>_left"
+// The built-in muscles' names, by the convention of model/tongue_muscles.hpp: "<group>_left"
 // and "<group>_right" for a paired group, the group's name otherwise.
 std::vector<std::string> builtin_muscle_names() {
   std::vector<std::string> names;
@@ -72,7 +72,7 @@ std::vector<std::string> builtin_muscle_names() {
   return names;
 }
 
-// The node sets of the built-in tongue (tongue/default_tongue.hpp): its boundary and landmark
+// The node sets of the built-in tongue (model/default_tongue.hpp): its boundary and landmark
 // sets, "all", and one per muscle (from its element sets).
 const std::vector<std::string>& tongue_set_names() {
   static const std::vector<std::string> names = [] {

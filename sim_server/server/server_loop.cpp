@@ -12,8 +12,8 @@
 #include "bus/activation_validation.hpp"
 #include "fem/integrator/static_solver.hpp"
 #include "fem/mesh/boundary_faces.hpp"
-#include "logging/scene_run_file.hpp"
-#include "tongue/default_tongue.hpp"
+#include "scene_run/scene_run_file.hpp"
+#include "model/default_tongue.hpp"
 
 namespace tongue::server {
 namespace {
@@ -93,7 +93,7 @@ ServerLoop::ServerLoop(const scene::Scene& scene, scene::BuiltScene built, Serve
       break;
   }
   if (!options_.output.empty())
-    log_ = logging::open_scene_run_file(options_.output, scene_, built_);
+    log_ = scene_run::open_scene_run_file(options_.output, scene_, built_);
 }
 
 ServerLoop::~ServerLoop() = default;
@@ -506,7 +506,7 @@ void ServerLoop::log_frame() {
   log_->append(time_, built_.solid->rest_positions() + accepted_u_,
                {last_report_.iterations, last_report_.final_residual, last_report_.wall_seconds,
                 last_report_.cuts},
-               logging::scene_muscle_frame(built_, accepted_u_, &accepted_v_));
+               scene_run::scene_muscle_frame(built_, accepted_u_, &accepted_v_));
 }
 
 }  // namespace tongue::server

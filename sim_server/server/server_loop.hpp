@@ -29,7 +29,7 @@
 #include "bus/messages.hpp"
 #include "fem/assembly/ellipticity_monitor.hpp"
 #include "fem/integrator/newmark_integrator.hpp"
-#include "logging/position_log.hpp"
+#include "run_file/run_file_writer.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_builder.hpp"
 #include "server/activation_round.hpp"
@@ -107,7 +107,7 @@ class ServerLoop {
   ServerBus& bus_;
   ServerOptions options_;
   std::function<bool()> stop_requested_;
-  std::unique_ptr<logging::PositionLog> log_;
+  std::unique_ptr<run_file::RunFileWriter> log_;
   std::unique_ptr<fem::NewmarkIntegrator> integrator_;
   fem::EllipticityMonitor ellipticity_{*built_.solid};  // warns once when the law turns unstable
   fem::Vector initial_u_;                // m, the state step 0 starts from (settled or rest)

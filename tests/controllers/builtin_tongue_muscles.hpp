@@ -4,9 +4,9 @@
 #include <string>
 #include <vector>
 
-#include "tongue/tongue_muscles.hpp"
+#include "model/tongue_muscles.hpp"
 
-namespace tongue::controllers::testing {
+namespace tongue::controller::testing {
 
 struct MuscleList {
   std::vector<std::string> names;
@@ -29,4 +29,4 @@ inline MuscleList builtin_tongue_muscles() {
   return out;
 }
 
-}  // namespace tongue::controllers::testing
+}  // namespace tongue::controller::testing

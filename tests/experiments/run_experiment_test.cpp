@@ -16,7 +16,7 @@
 #error "RUN_EXPERIMENT_PATH must name the run_experiment executable"
 #endif
 
-namespace tongue::experiments {
+namespace tongue::runner {
 namespace {
 
 namespace fs = std::filesystem;
@@ -114,4 +114,4 @@ TEST_F(RunExperiment, MissingProgramIsAClearError) {
 }
 
 }  // namespace
-}  // namespace tongue::experiments
+}  // namespace tongue::runner

@@ -2,7 +2,7 @@
 // every error, each named by its key path.
 #include <gtest/gtest.h>
 
-#include "tongue/active_stiffening.hpp"
+#include "model/active_stiffening.hpp"
 
 #include <set>
 #include <string>
@@ -12,7 +12,7 @@
 #include "scene/scene_builder.hpp"
 #include "scene/scene_error_expectations.hpp"
 #include "scene/scene_reader.hpp"
-#include "tongue/default_tongue.hpp"
+#include "model/default_tongue.hpp"
 
 namespace tongue::scene {
 namespace {

@@ -1,5 +1,5 @@
 #pragma once
-// Read-only access to an HDF5 run file (the layout of sim_server/logging), for end-to-end tests.
+// Read-only access to an HDF5 run file (the layout of sim_server/run_file), for end-to-end tests.
 #include <hdf5.h>
 
 #include <filesystem>

@@ -4,7 +4,7 @@
 
 #include <stdexcept>
 
-namespace tongue::controllers::ep {
+namespace tongue::ep_controller {
 namespace {
 
 // Feedback whose length tells the step it came from.
@@ -62,4 +62,4 @@ TEST(DelayBuffer, RejectsNoDelayAndEmptyUse) {
 }
 
 }  // namespace
-}  // namespace tongue::controllers::ep
+}  // namespace tongue::ep_controller

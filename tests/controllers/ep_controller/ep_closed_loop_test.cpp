@@ -26,7 +26,7 @@
 #error "PROJECT_DIR must name the project's source directory"
 #endif
 
-namespace tongue::controllers {
+namespace tongue::controller {
 namespace {
 
 namespace fs = std::filesystem;
@@ -159,4 +159,4 @@ TEST_F(EpClosedLoop, LoweringLambdaOfSGRaisesTheVelarDorsum) {
 }
 
 }  // namespace
-}  // namespace tongue::controllers
+}  // namespace tongue::controller

@@ -8,16 +8,16 @@
 #include <limits>
 #include <stdexcept>
 
-#include "common/input_error.hpp"
+#include "controller/input_error.hpp"
 #include "ep_controller/force_lag.hpp"
 
-namespace tongue::controllers::ep {
+namespace tongue::ep_controller {
 namespace {
 
 constexpr double kDt = 0.004;  // s
 
-Model two_halves() {
-  Model m;
+controller::Model two_halves() {
+  controller::Model m;
   m.muscle_names = {"SG_left", "SG_right", "HG_left"};
   m.muscle_max_forces = {12.0, 12.0, 32.5};
   m.num_muscles = 3;
@@ -25,8 +25,8 @@ Model two_halves() {
   return m;
 }
 
-State state(std::int64_t step, double length_m, double velocity_m_s = 0.0) {
-  State s;
+controller::State state(std::int64_t step, double length_m, double velocity_m_s = 0.0) {
+  controller::State s;
   s.step = step;
   s.time = static_cast<double>(step) * kDt;
   s.num_muscles = 3;
@@ -49,7 +49,7 @@ TEST(EpController, AtRestWithoutAPlanEveryLevelIsZero) {
   EpController c = controller("delta_lambda_mm: {SG: [0]}");
   c.start(two_halves());
   c.observe(state(0, 0.06));
-  const MuscleLevels levels = c.command(1);
+  const controller::MuscleLevels levels = c.command(1);
   EXPECT_EQ(levels.names, two_halves().muscle_names);  // every muscle, every step
   EXPECT_EQ(levels.levels, (std::vector<double>{0.0, 0.0, 0.0}));
 }
@@ -59,7 +59,7 @@ TEST(EpController, LoweredLambdaGivesTheExponentialForceSplitOverTheHalves) {
   EpController c = controller("transition: 0\ndelta_lambda_mm: {SG: [-10]}");
   c.start(two_halves());
   c.observe(state(0, 0.06));
-  const MuscleLevels levels = c.command(1);
+  const controller::MuscleLevels levels = c.command(1);
   // Each half: rho 4.4 / 2 (equal F_max), A = 10 mm, at rest (velocity factor at 0), F_max 12.
   const double force = 2.2 * std::expm1(0.112 * 10.0) * velocity_factor(0.0);
   EXPECT_NEAR(levels.levels[0], force / 12.0, 1e-12);
@@ -146,21 +146,21 @@ TEST(EpController, UnusableFeedbackIsAnError) {
 
 TEST(EpController, PlanThatDoesNotFitTheModelNamesTheFile) {
   EpController unknown = controller("delta_lambda_mm: {GGp: [-5]}");
-  EXPECT_THROW(unknown.start(two_halves()), InputError);
+  EXPECT_THROW(unknown.start(two_halves()), controller::InputError);
   EpController rho = controller("delta_lambda_mm: {SG: [-5]}\nrho: {XX: 1}");
   try {
     rho.start(two_halves());
     ADD_FAILURE() << "accepted";
-  } catch (const InputError& e) {
+  } catch (const controller::InputError& e) {
     EXPECT_EQ(e.key_path(), "rho.XX");
   }
-  Model box = two_halves();
+  controller::Model box = two_halves();
   box.muscle_names[2] = "flexor";  // no default rho
   EpController no_rho = controller("delta_lambda_mm: {SG: [-5]}");
   try {
     no_rho.start(box);
     ADD_FAILURE() << "accepted";
-  } catch (const InputError& e) {
+  } catch (const controller::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("flexor"), std::string::npos) << e.what();
   }
 }
@@ -180,4 +180,4 @@ TEST(ForceLag, SkippedStepsAdvanceByTheirTimeAndAResetStartsFromZero) {
 }
 
 }  // namespace
-}  // namespace tongue::controllers::ep
+}  // namespace tongue::ep_controller

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-namespace tongue::controllers::ep {
+namespace tongue::ep_controller {
 namespace {
 
 const LambdaConstants k;
@@ -93,4 +93,4 @@ TEST(LambdaModel, LevelIsForceOverMaxForceCappedAtOne) {
 }
 
 }  // namespace
-}  // namespace tongue::controllers::ep
+}  // namespace tongue::ep_controller

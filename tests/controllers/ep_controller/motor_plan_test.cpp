@@ -5,13 +5,13 @@
 #include <string>
 
 #include "builtin_tongue_muscles.hpp"
-#include "common/input_error.hpp"
+#include "controller/input_error.hpp"
 
 #ifndef CONTROLLERS_DIR
 #error "CONTROLLERS_DIR must name the controllers source directory"
 #endif
 
-namespace tongue::controllers::ep {
+namespace tongue::ep_controller {
 namespace {
 
 const std::vector<std::string> kTongue = testing::builtin_tongue_muscles().names;
@@ -99,7 +99,7 @@ void expect_error(const std::string& text, const std::string& key_path,
   try {
     const MotorPlan plan(parse_motor_plan(text, "bad_plan.yaml"), kTongue);
     ADD_FAILURE() << "accepted:\n" << text;
-  } catch (const InputError& e) {
+  } catch (const controller::InputError& e) {
     const std::string what = e.what();
     EXPECT_EQ(e.file(), "bad_plan.yaml");
     EXPECT_EQ(e.key_path(), key_path) << what;
@@ -137,7 +137,7 @@ TEST(MotorPlan, ErrorsCarryTheLine) {
   try {
     parse_motor_plan("hold: 0.1\ndelta_lambda_mm:\n  SG: [1, q]\n", "p.yaml");
     ADD_FAILURE() << "accepted";
-  } catch (const InputError& e) {
+  } catch (const controller::InputError& e) {
     EXPECT_NE(std::string(e.what()).find("(line 3)"), std::string::npos) << e.what();
   }
 }
@@ -146,7 +146,7 @@ TEST(MotorPlan, MissingFileIsNamed) {
   try {
     read_motor_plan("/nonexistent/plan.yaml");
     ADD_FAILURE() << "accepted";
-  } catch (const InputError& e) {
+  } catch (const controller::InputError& e) {
     EXPECT_EQ(e.file(), "/nonexistent/plan.yaml");
   }
 }
@@ -167,4 +167,4 @@ TEST(MotorPlan, ShippedPlansFitTheBuiltInTongue) {
 }
 
 }  // namespace
-}  // namespace tongue::controllers::ep
+}  // namespace tongue::ep_controller

@@ -7,7 +7,7 @@
 
 #include "builtin_tongue_muscles.hpp"
 
-namespace tongue::controllers::ep {
+namespace tongue::ep_controller {
 namespace {
 
 TEST(MuscleRho, PublishedValuesPerGroup) {
@@ -68,4 +68,4 @@ TEST(MuscleRho, OverridesWinAndUnknownMusclesNeedOne) {
 }
 
 }  // namespace
-}  // namespace tongue::controllers::ep
+}  // namespace tongue::ep_controller

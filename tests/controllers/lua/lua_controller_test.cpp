@@ -28,7 +28,7 @@
 #error "LUA_STEP_CONTROLLER_PATH must name the Lua controller's wrapper"
 #endif
 
-namespace tongue::controllers {
+namespace tongue::controller {
 namespace {
 
 namespace fs = std::filesystem;
@@ -199,4 +199,4 @@ TEST_F(LuaController, BadCommandLinesExitWithStatus2) {
 }
 
 }  // namespace
-}  // namespace tongue::controllers
+}  // namespace tongue::controller

@@ -28,7 +28,7 @@
 #error "PROJECT_DIR must name the project's source directory"
 #endif
 
-namespace tongue::controllers {
+namespace tongue::controller {
 namespace {
 
 namespace fs = std::filesystem;
@@ -134,4 +134,4 @@ TEST_F(Replay, LogOfAnotherSceneIsExit1NamingTheFileAndTheMuscles) {
 }
 
 }  // namespace
-}  // namespace tongue::controllers
+}  // namespace tongue::controller

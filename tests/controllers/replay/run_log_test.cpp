@@ -8,7 +8,7 @@
 #include <filesystem>
 #include <string>
 
-#include "common/input_error.hpp"
+#include "controller/input_error.hpp"
 #include "replay/log_replayer.hpp"
 #include "support/run_command.hpp"
 #include "support/temp_dir_test.hpp"
@@ -17,7 +17,7 @@
 #error "SIM_BATCH_PATH must name the sim_batch executable"
 #endif
 
-namespace tongue::controllers::replay {
+namespace tongue::replay {
 namespace {
 
 namespace fs = std::filesystem;
@@ -55,8 +55,8 @@ class RunLogTest : public tongue::testing::TempDirTest {
     return out;
   }
 
-  static Model box_model() {
-    Model m;
+  static controller::Model box_model() {
+    controller::Model m;
     m.muscle_names = {"flexor"};
     m.muscle_max_forces = {0.01};
     m.num_muscles = 1;
@@ -65,14 +65,14 @@ class RunLogTest : public tongue::testing::TempDirTest {
   }
 
   // start() must throw an InputError naming the file and the dataset.
-  static void expect_misfit(RunLog log, const Model& model, const std::string& dataset,
+  static void expect_misfit(RunLog log, const controller::Model& model, const std::string& dataset,
                             const std::string& also) {
     const std::string path = log.path;
     LogReplayer replayer(std::move(log));
     try {
       replayer.start(model);
       ADD_FAILURE() << "accepted";
-    } catch (const InputError& e) {
+    } catch (const controller::InputError& e) {
       EXPECT_EQ(e.file(), path);
       EXPECT_EQ(e.key_path(), dataset) << e.what();
       EXPECT_NE(std::string(e.what()).find(also), std::string::npos) << e.what();
@@ -97,7 +97,7 @@ TEST_F(RunLogTest, ReplayerSendsRowKForStepKAndEndsWithTheLog) {
   LogReplayer replayer(read_run_log(batch(box_scene(), "run").string()));
   replayer.start(box_model());
   EXPECT_EQ(replayer.last_step(), 10);
-  const MuscleLevels l = replayer.command(5);
+  const controller::MuscleLevels l = replayer.command(5);
   EXPECT_EQ(l.names, (std::vector<std::string>{"flexor"}));
   EXPECT_EQ(l.levels, (std::vector<double>{0.3}));
   EXPECT_EQ(replayer.command(1).levels, (std::vector<double>{0.0}));
@@ -106,13 +106,13 @@ TEST_F(RunLogTest, ReplayerSendsRowKForStepKAndEndsWithTheLog) {
 
 TEST_F(RunLogTest, LogThatDoesNotFitTheServerIsRejected) {
   const std::string path = batch(box_scene(), "run").string();
-  Model other = box_model();
+  controller::Model other = box_model();
   other.muscle_names = {"extensor"};
   expect_misfit(read_run_log(path), other, "/muscles/names", "(flexor)");
-  Model stronger = box_model();
+  controller::Model stronger = box_model();
   stronger.muscle_max_forces = {0.02};
   expect_misfit(read_run_log(path), stronger, "/muscles/max_force", "0.01 N in the log, 0.02 N");
-  Model finer = box_model();
+  controller::Model finer = box_model();
   finer.dt = 0.001;
   expect_misfit(read_run_log(path), finer, "/time", "frame 1 is at 0.002 s");
   // Every second step logged: frame 1 is step 2.
@@ -146,19 +146,19 @@ TEST_F(RunLogTest, UnreadableFilesNameTheFileAndTheDataset) {
   try {
     read_run_log(text);
     ADD_FAILURE() << "accepted";
-  } catch (const InputError& e) {
+  } catch (const controller::InputError& e) {
     EXPECT_EQ(e.file(), text);
   }
   const std::string no_muscles = batch(box_scene("1", false), "no_muscles").string();
   try {
     read_run_log(no_muscles);
     ADD_FAILURE() << "accepted";
-  } catch (const InputError& e) {
+  } catch (const controller::InputError& e) {
     EXPECT_EQ(e.file(), no_muscles);
     EXPECT_EQ(e.key_path(), "/muscles/names") << e.what();
   }
-  EXPECT_THROW(read_run_log((dir_ / "missing.h5").string()), InputError);
+  EXPECT_THROW(read_run_log((dir_ / "missing.h5").string()), controller::InputError);
 }
 
 }  // namespace
-}  // namespace tongue::controllers::replay
+}  // namespace tongue::replay

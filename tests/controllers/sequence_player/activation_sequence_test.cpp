@@ -5,14 +5,14 @@
 #include <string>
 
 #include "builtin_tongue_muscles.hpp"
-#include "common/input_error.hpp"
+#include "controller/input_error.hpp"
 #include "sequence_player/sequence_player.hpp"
 
 #ifndef CONTROLLERS_DIR
 #error "CONTROLLERS_DIR must name the controllers source directory"
 #endif
 
-namespace tongue::controllers::sequence {
+namespace tongue::sequence_player {
 namespace {
 
 const testing::MuscleList kTongue = testing::builtin_tongue_muscles();
@@ -23,7 +23,7 @@ ActivationSequence resolve(const std::string& text) {
 
 // Level of one muscle in the levels at t.
 double level_of(const ActivationSequence& s, double t, const std::string& name) {
-  const MuscleLevels l = s.levels_at(t);
+  const controller::MuscleLevels l = s.levels_at(t);
   for (std::size_t i = 0; i < l.names.size(); ++i)
     if (l.names[i] == name) return l.levels[i];
   ADD_FAILURE() << name << " is not sent";
@@ -82,14 +82,14 @@ TEST(ActivationSequence, PlayerSendsTheLevelsAtTheEndOfTheStep) {
   SequencePlayer player(parse_sequence(
       "duration: 0.1\nentries: [{muscle: SL, start: 0.0, end: 0.1, level_from: 0, level_to: 1}]",
       "seq.yaml"));
-  Model m;
+  controller::Model m;
   m.muscle_names = kTongue.names;
   m.muscle_max_forces = kTongue.max_forces_n;
   m.num_muscles = static_cast<int>(kTongue.names.size());
   m.dt = 0.004;
   player.start(m);
   EXPECT_EQ(player.last_step(), 25);         // 0.1 s / 4 ms
-  const MuscleLevels l = player.command(5);  // the step from 16 to 20 ms
+  const controller::MuscleLevels l = player.command(5);  // the step from 16 to 20 ms
   ASSERT_EQ(l.names, (std::vector<std::string>{"SL"}));
   EXPECT_NEAR(l.levels[0], 5 * 0.004 / 0.1, 1e-12);
 }
@@ -105,7 +105,7 @@ void expect_error(const std::string& text, const std::string& key_path,
   try {
     resolve(text);
     ADD_FAILURE() << "accepted:\n" << text;
-  } catch (const InputError& e) {
+  } catch (const controller::InputError& e) {
     const std::string what = e.what();
     EXPECT_EQ(e.file(), "seq.yaml");
     EXPECT_EQ(e.key_path(), key_path) << what;
@@ -148,4 +148,4 @@ TEST(ActivationSequence, ShippedSg3nIsThePapersStep) {
 }
 
 }  // namespace
-}  // namespace tongue::controllers::sequence
+}  // namespace tongue::sequence_player

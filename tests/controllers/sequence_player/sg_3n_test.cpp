@@ -27,7 +27,7 @@
 #error "PROJECT_DIR must name the project's source directory"
 #endif
 
-namespace tongue::controllers {
+namespace tongue::controller {
 namespace {
 
 namespace fs = std::filesystem;
@@ -76,4 +76,4 @@ TEST_F(Sg3n, SequencePlayerThroughTheServerReproducesSimBatch) {
 }
 
 }  // namespace
-}  // namespace tongue::controllers
+}  // namespace tongue::controller

@@ -1,0 +1,62 @@
+#pragma once
+// The loop every controller program runs against one tongue server (lock-step protocol: README
+// "Running the server"):
+//
+// 1. Wait for the model on <prefix>MODEL. Without one within 200 ms, send "describe" on
+//    <prefix>COMMAND, again after 400 ms, 800 ms, then every second (a server still settling
+//    answers them all at once, so they are spaced out rather than flooded).
+// 2. Wait for states on <prefix>STATE. A controller started after the server has missed the
+//    state a lock-step server waits on; the server's answer to "describe" (model, then current
+//    state) brings it.
+// 3. Every state goes to the controller (observe); the latest one, step k, is answered with the
+//    controller's levels for step k + 1, tagged k + 1 (lockstep) or -1 (realtime: the server
+//    holds it). A step is answered once (a repeated state, e.g. "paused", is not answered again)
+//    unless the server was reset meanwhile (the step went down).
+// 4. The loop ends (exit 0) after the state of step N = min(--max-steps, the controller's last
+//    step), sending nothing for later steps; on SIGINT or SIGTERM (exit 0); with exit 4 when the
+//    model, the first state or any later state does not come within --timeout-s; with exit 2 when
+//    the server publishes an unconverged step (it stops there); with exit 1 on a bus error or an
+//    input that does not fit the model. A one-line summary goes to stderr in every case.
+#include <cstdint>
+#include <string>
+
+#include "controller/command_line.hpp"
+#include "controller/controller.hpp"
+
+namespace tongue::controller {
+
+enum ExitCode : int {
+  kExitOk = 0,
+  kExitError = 1,         // bad command line, input file, bus error, input not fitting the model
+  kExitNotConverged = 2,  // the server published an unconverged step
+  kExitTimeout = 4,       // no model or state within --timeout-s
+};
+
+struct LoopCounts {
+  std::int64_t states_received = 0;
+  std::int64_t activations_sent = 0;
+  std::int64_t commands_sent = 0;  // describe
+  std::int64_t first_step = -1;    // of the states received; -1: none
+  std::int64_t last_step = -1;
+  int resets = 0;  // times the server's step went down
+};
+
+struct LoopOutcome {
+  int exit_code = kExitOk;
+  std::string reason;  // why the loop ended, e.g. "reached step 30 (--max-steps)"
+  LoopCounts counts;
+};
+
+// Runs the loop for controller on the bus of options. A bus error, or an InputError from
+// controller.start (its input does not fit the model), ends it with kExitError and the message
+// as the reason.
+// program names the controller in the messages it prints.
+LoopOutcome run_control_loop(const std::string& program, const CommonOptions& options,
+                             Controller& controller);
+
+// The summary line: "<program>: <reason>; <n> states received (steps a-b), <m> activations sent
+// (lockstep), <c> commands sent[; <controller summary>]".
+std::string summary_line(const std::string& program, const LoopOutcome& outcome,
+                         const CommonOptions& options, const std::string& controller_summary);
+
+}  // namespace tongue::controller

@@ -1,0 +1,405 @@
+#include "run_file/run_file_writer.hpp"
+
+#include <hdf5.h>
+
+#include <algorithm>
+#include <array>
+#include <chrono>
+#include <filesystem>
+#include <vector>
+
+#include "run_file/xdmf_sidecar.hpp"
+
+namespace tongue::run_file {
+
+namespace {
+
+constexpr int kFormatVersion = 1;
+
+double now_seconds() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+// HDF5 prints its error stack to stderr on every failed call by default; this class reports
+// failures as exceptions instead, so the stack is silenced while one of its calls runs.
+class QuietErrors {
+ public:
+  QuietErrors() {
+    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
+    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
+  }
+  ~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
+  QuietErrors(const QuietErrors&) = delete;
+  QuietErrors& operator=(const QuietErrors&) = delete;
+
+ private:
+  H5E_auto2_t func_ = nullptr;
+  void* data_ = nullptr;
+};
+
+// Owns one HDF5 identifier and closes it with the matching H5?close.
+class Id {
+ public:
+  using Closer = herr_t (*)(hid_t);
+  Id() = default;
+  Id(hid_t id, Closer close) : id_(id), close_(close) {}
+  Id(Id&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = H5I_INVALID_HID; }
+  Id& operator=(Id&& o) noexcept {
+    if (this != &o) {
+      reset();
+      id_ = o.id_;
+      close_ = o.close_;
+      o.id_ = H5I_INVALID_HID;
+    }
+    return *this;
+  }
+  ~Id() { reset(); }
+  hid_t get() const { return id_; }
+  void reset() {
+    if (id_ >= 0 && close_) close_(id_);
+    id_ = H5I_INVALID_HID;
+  }
+
+ private:
+  hid_t id_ = H5I_INVALID_HID;
+  Closer close_ = nullptr;
+};
+
+}  // namespace
+
+struct RunFileWriter::Handles {
+  Id file;
+  Id time, positions, iterations, residual, wall_time, cuts;
+  Id activations, muscle_length, muscle_velocity;  // only with muscles
+};
+
+namespace {
+
+class Writer {
+ public:
+  explicit Writer(const std::string& path) : path_(path) {}
+
+  Id check(hid_t id, Id::Closer close, const std::string& what) const {
+    if (id < 0) fail(what);
+    return Id(id, close);
+  }
+  void check(herr_t status, const std::string& what) const {
+    if (status < 0) fail(what);
+  }
+  [[noreturn]] void fail(const std::string& what) const {
+    throw RunFileError(path_ + ": HDF5 failed to " + what);
+  }
+
+  void string_attribute(hid_t loc, const std::string& name, const std::string& value) const {
+    // Variable-length UTF-8: h5py reads it as str, and its size is not limited by the 64 KiB
+    // an attribute's own storage may hold (long scene texts).
+    const Id type = check(H5Tcopy(H5T_C_S1), H5Tclose, "copy a string type");
+    check(H5Tset_size(type.get(), H5T_VARIABLE), "set a string size");
+    check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "set a string encoding");
+    const char* data = value.c_str();
+    write_attribute(loc, name, type.get(), &data);
+  }
+
+  void int_attribute(hid_t loc, const std::string& name, int value) const {
+    write_attribute(loc, name, H5T_NATIVE_INT, &value);
+  }
+
+  // A fixed-size dataset written at once.
+  Id fixed(hid_t loc, const std::string& name, hid_t file_type, hid_t mem_type,
+           const std::vector<hsize_t>& dims, const void* data, const std::string& units,
+           const std::string& description) const {
+    const Id space = check(H5Screate_simple(static_cast<int>(dims.size()), dims.data(), nullptr),
+                           H5Sclose, "create the dataspace of " + name);
+    Id ds = check(H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, H5P_DEFAULT,
+                             H5P_DEFAULT),
+                  H5Dclose, "create " + name);
+    const bool empty = std::any_of(dims.begin(), dims.end(), [](hsize_t d) { return d == 0; });
+    if (!empty)
+      check(H5Dwrite(ds.get(), mem_type, H5S_ALL, H5S_ALL, H5P_DEFAULT, data), "write " + name);
+    describe(ds.get(), units, description);
+    return ds;
+  }
+
+  // A fixed list of variable-length UTF-8 strings (h5py reads them as str).
+  void strings(hid_t loc, const std::string& name, const std::vector<std::string>& values,
+               const std::string& description) const {
+    const Id type = check(H5Tcopy(H5T_C_S1), H5Tclose, "copy a string type");
+    check(H5Tset_size(type.get(), H5T_VARIABLE), "set a string size");
+    check(H5Tset_cset(type.get(), H5T_CSET_UTF8), "set a string encoding");
+    std::vector<const char*> data;
+    for (const auto& v : values) data.push_back(v.c_str());
+    fixed(loc, name, type.get(), type.get(), {static_cast<hsize_t>(values.size())}, data.data(),
+          "1", description);
+  }
+
+  Id group(hid_t loc, const std::string& name) const {
+    return check(H5Gcreate2(loc, name.c_str(), H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+                 "create group " + name);
+  }
+
+  // A dataset of frames [0 x frame_dims...], extendible along time, chunked chunk_frames at a
+  // time along it so that one frame is read by decompressing few chunks.
+  Id series(hid_t loc, const std::string& name, hid_t file_type,
+            const std::vector<hsize_t>& frame_dims, hsize_t chunk_frames, int deflate_level,
+            const std::string& units, const std::string& description) const {
+    std::vector<hsize_t> dims{0}, max_dims{H5S_UNLIMITED}, chunk{chunk_frames};
+    for (hsize_t d : frame_dims) {
+      dims.push_back(d);
+      max_dims.push_back(d);
+      chunk.push_back(std::max<hsize_t>(d, 1));
+    }
+    const int rank = static_cast<int>(dims.size());
+    const Id space = check(H5Screate_simple(rank, dims.data(), max_dims.data()), H5Sclose,
+                           "create the dataspace of " + name);
+    const Id dcpl = check(H5Pcreate(H5P_DATASET_CREATE), H5Pclose, "create a property list");
+    check(H5Pset_chunk(dcpl.get(), rank, chunk.data()), "set the chunks of " + name);
+    if (deflate_level > 0 && H5Zfilter_avail(H5Z_FILTER_DEFLATE) > 0) {
+      check(H5Pset_shuffle(dcpl.get()), "set the shuffle filter of " + name);
+      check(H5Pset_deflate(dcpl.get(), static_cast<unsigned>(std::min(deflate_level, 9))),
+            "set the deflate filter of " + name);
+    }
+    Id ds = check(
+        H5Dcreate2(loc, name.c_str(), file_type, space.get(), H5P_DEFAULT, dcpl.get(), H5P_DEFAULT),
+        H5Dclose, "create " + name);
+    describe(ds.get(), units, description);
+    return ds;
+  }
+
+  // Writes frame number `frame` (the dataset grows to frame + 1 frames).
+  void append(hid_t ds, hsize_t frame, hid_t mem_type, const void* data,
+              const std::string& name) const {
+    const Id old_space = check(H5Dget_space(ds), H5Sclose, "read the extent of " + name);
+    const int rank = H5Sget_simple_extent_ndims(old_space.get());
+    if (rank < 1) fail("read the rank of " + name);
+    std::vector<hsize_t> dims(rank);
+    H5Sget_simple_extent_dims(old_space.get(), dims.data(), nullptr);
+    dims[0] = frame + 1;
+    check(H5Dset_extent(ds, dims.data()), "extend " + name);
+    const Id space = check(H5Dget_space(ds), H5Sclose, "read the extent of " + name);
+    std::vector<hsize_t> start(rank, 0), count = dims;
+    start[0] = frame;
+    count[0] = 1;
+    check(H5Sselect_hyperslab(space.get(), H5S_SELECT_SET, start.data(), nullptr, count.data(),
+                              nullptr),
+          "select a frame of " + name);
+    const Id mem =
+        check(H5Screate_simple(rank, count.data(), nullptr), H5Sclose, "create a memory dataspace");
+    check(H5Dwrite(ds, mem_type, mem.get(), space.get(), H5P_DEFAULT, data), "write " + name);
+  }
+
+ private:
+  void write_attribute(hid_t loc, const std::string& name, hid_t type, const void* data) const {
+    if (H5Aexists(loc, name.c_str()) > 0) check(H5Adelete(loc, name.c_str()), "replace " + name);
+    const Id space = check(H5Screate(H5S_SCALAR), H5Sclose, "create a scalar dataspace");
+    const Id attr =
+        check(H5Acreate2(loc, name.c_str(), type, space.get(), H5P_DEFAULT, H5P_DEFAULT), H5Aclose,
+              "create attribute " + name);
+    check(H5Awrite(attr.get(), type, data), "write attribute " + name);
+  }
+
+  void describe(hid_t ds, const std::string& units, const std::string& description) const {
+    string_attribute(ds, "units", units);
+    string_attribute(ds, "description", description);
+  }
+
+  std::string path_;
+};
+
+}  // namespace
+
+RunFileWriter::RunFileWriter(const std::string& path, const fem::Mesh& mesh,
+                         const std::string& scene_text, const RunFileOptions& options,
+                         const std::vector<MuscleDescription>& muscles)
+    : path_(path),
+      num_nodes_(mesh.num_nodes()),
+      num_muscles_(static_cast<int>(muscles.size())),
+      flush_interval_(options.flush_interval),
+      h_(std::make_unique<Handles>()) {
+  const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+  std::error_code ec;
+  if (!parent.empty()) std::filesystem::create_directories(parent, ec);
+  if (ec)
+    throw RunFileError(path + ": cannot create directory " + parent.string() + ": " +
+                           ec.message());
+
+  const QuietErrors quiet;
+  const Writer w(path);
+  h_->file = Id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  if (h_->file.get() < 0) throw RunFileError(path + ": cannot create the HDF5 file");
+  const hid_t file = h_->file.get();
+
+  w.int_attribute(file, "format_version", kFormatVersion);
+  w.string_attribute(file, "length_unit", "m");
+  w.string_attribute(file, "time_unit", options.time_unit);
+  w.string_attribute(file, "scene_text", scene_text);
+
+  const auto n = static_cast<hsize_t>(num_nodes_);
+  const auto e = static_cast<hsize_t>(mesh.num_elements());
+  std::vector<double> rest(3 * n);
+  for (hsize_t i = 0; i < n; ++i)
+    for (int c = 0; c < 3; ++c) rest[3 * i + c] = mesh.nodes[i][c];
+  std::vector<int> elements(8 * e);
+  for (hsize_t i = 0; i < e; ++i)
+    std::copy(mesh.elements[i].begin(), mesh.elements[i].end(), elements.begin() + 8 * i);
+  w.fixed(file, "rest_positions", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {n, 3}, rest.data(), "m",
+          "node positions of the reference configuration");
+  w.fixed(file, "elements", H5T_STD_I32LE, H5T_NATIVE_INT, {e, 8}, elements.data(), "1",
+          "hex8 connectivity: 0-based node indices, ANSYS SOLID185 node order");
+  // Named sets, so that a picture tool can find landmarks and colour muscles without the scene.
+  {
+    const Id mesh_group = w.group(file, "mesh");
+    const Id node_sets = w.group(mesh_group.get(), "node_sets");
+    for (const auto& [name, nodes] : mesh.node_sets)
+      w.fixed(node_sets.get(), name, H5T_STD_I32LE, H5T_NATIVE_INT, {nodes.size()}, nodes.data(),
+              "1", "0-based node indices of node set " + name);
+    const Id element_sets = w.group(mesh_group.get(), "element_sets");
+    for (const auto& [name, elements] : mesh.element_sets)
+      w.fixed(element_sets.get(), name, H5T_STD_I32LE, H5T_NATIVE_INT, {elements.size()},
+              elements.data(), "1", "0-based element indices of element set " + name);
+  }
+
+  // About 64 KiB of positions per chunk: large enough to compress well, small enough that
+  // reading one frame stays cheap; at least one frame, at most 64.
+  const hsize_t frame_bytes = std::max<hsize_t>(1, 3 * n * sizeof(double));
+  const hsize_t chunk_frames = std::clamp<hsize_t>(65536 / frame_bytes, 1, 64);
+  const hsize_t scalar_chunk = 1024;
+  const int z = options.deflate_level;
+  h_->time = w.series(
+      file, "time", H5T_IEEE_F64LE, {}, scalar_chunk, z, options.time_unit,
+      options.time_unit == "s" ? "simulated time of each frame" : "load factor of each frame");
+  h_->positions = w.series(file, "positions", H5T_IEEE_F64LE, {n, 3}, chunk_frames, z, "m",
+                           "current node positions of each frame");
+  const Id solver = w.check(H5Gcreate2(file, "solver", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
+                            H5Gclose, "create group solver");
+  h_->iterations = w.series(solver.get(), "iterations", H5T_STD_I32LE, {}, scalar_chunk, z, "1",
+                            "Newton iterations since the previous frame, over all substeps");
+  h_->residual = w.series(solver.get(), "residual", H5T_IEEE_F64LE, {}, scalar_chunk, z, "N",
+                          "final residual norm of the frame's step");
+  h_->wall_time = w.series(solver.get(), "wall_time", H5T_IEEE_F64LE, {}, scalar_chunk, z, "s",
+                           "wall-clock time since the previous frame");
+  h_->cuts = w.series(solver.get(), "cuts", H5T_STD_I32LE, {}, scalar_chunk, z, "1",
+                      "step halvings since the previous frame");
+  if (num_muscles_ > 0) {
+    const auto m = static_cast<hsize_t>(num_muscles_);
+    const Id group = w.group(file, "muscles");
+    std::vector<std::string> names;
+    std::vector<double> max_force;
+    for (const auto& mu : muscles) {
+      names.push_back(mu.name);
+      max_force.push_back(mu.max_force);
+    }
+    w.strings(group.get(), "names", names, "muscle names, in the order of every muscle dataset");
+    w.fixed(group.get(), "max_force", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {m}, max_force.data(), "N",
+            "tension at full activation");
+    std::vector<int> fibre_muscle, offsets{0}, nodes;
+    std::vector<double> weights, origins;
+    for (std::size_t i = 0; i < muscles.size(); ++i) {
+      for (const FibreDescription& f : muscles[i].fibres) {
+        fibre_muscle.push_back(static_cast<int>(i));
+        weights.push_back(f.weight);
+        origins.insert(origins.end(), f.origin.begin(), f.origin.end());
+        nodes.insert(nodes.end(), f.nodes.begin(), f.nodes.end());
+        offsets.push_back(static_cast<int>(nodes.size()));
+      }
+    }
+    if (!fibre_muscle.empty()) {
+      const auto f = static_cast<hsize_t>(fibre_muscle.size());
+      const Id fibres = w.group(group.get(), "fibres");
+      w.fixed(fibres.get(), "muscle", H5T_STD_I32LE, H5T_NATIVE_INT, {f}, fibre_muscle.data(), "1",
+              "index of the fibre's muscle in /muscles/names");
+      w.fixed(fibres.get(), "weight", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {f}, weights.data(), "1",
+              "share of the muscle's tension the fibre carries");
+      w.fixed(fibres.get(), "origin", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {f, 3}, origins.data(),
+              "m", "fixed bony attachment before the first node; NaN when the fibre has none");
+      w.fixed(fibres.get(), "node_offsets", H5T_STD_I32LE, H5T_NATIVE_INT, {f + 1}, offsets.data(),
+              "1", "fibre k's nodes are nodes[node_offsets[k] .. node_offsets[k+1])");
+      w.fixed(fibres.get(), "nodes", H5T_STD_I32LE, H5T_NATIVE_INT,
+              {static_cast<hsize_t>(nodes.size())}, nodes.data(), "1",
+              "0-based node indices of every fibre, in order, fibre after fibre");
+    }
+    // Like the positions: about 64 KiB per chunk, at least one frame, at most 1024.
+    const hsize_t muscle_chunk = std::clamp<hsize_t>(65536 / (m * sizeof(double)), 1, 1024);
+    h_->activations = w.series(file, "activations", H5T_IEEE_F64LE, {m}, muscle_chunk, z, "1",
+                               "activation level of each muscle, a fraction of max_force");
+    h_->muscle_length = w.series(group.get(), "length", H5T_IEEE_F64LE, {m}, muscle_chunk, z, "m",
+                                 "weighted mean fibre length of each muscle");
+    h_->muscle_velocity =
+        w.series(group.get(), "velocity", H5T_IEEE_F64LE, {m}, muscle_chunk, z, "m/s",
+                 "rate of change of the muscle length, positive when lengthening");
+  }
+  w.check(H5Fflush(file, H5F_SCOPE_LOCAL), "flush");
+  last_flush_ = now_seconds();
+}
+
+RunFileWriter::~RunFileWriter() {
+  const QuietErrors quiet;
+  if (h_ && h_->file.get() >= 0) H5Fflush(h_->file.get(), H5F_SCOPE_LOCAL);
+  // The XDMF sidecar <run>.xmf for ParaView, written once at close: it lists every frame, so
+  // rewriting it at each flush would cost O(frames) per second of a long run.
+  try {
+    XdmfRun run;
+    run.h5_file = std::filesystem::path(path_).filename().string();
+    run.num_nodes = num_nodes_;
+    run.times.resize(static_cast<std::size_t>(frames_));
+    if (frames_ > 0 && H5Dread(h_->time.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
+                               run.times.data()) < 0)
+      run.times.clear();
+    const Id elements(H5Dopen2(h_->file.get(), "elements", H5P_DEFAULT), H5Dclose);
+    const Id element_space(H5Dget_space(elements.get()), H5Sclose);
+    hsize_t dims[2] = {0, 0};
+    if (H5Sget_simple_extent_dims(element_space.get(), dims, nullptr) == 2) {
+      run.num_elements = static_cast<long long>(dims[0]);
+      write_xdmf_sidecar(xdmf_sidecar_path(path_), run);
+    }
+  } catch (...) {  // a missing sidecar is no reason to fail a run
+  }
+  // Datasets close before the file (members destroyed in reverse order of declaration).
+}
+
+void RunFileWriter::append(double time, const fem::Vector& positions, const SolverFigures& figures,
+                         const MuscleFrame& muscles) {
+  if (positions.size() != 3 * num_nodes_)
+    throw std::invalid_argument(path_ + ": positions have " + std::to_string(positions.size()) +
+                                " entries, expected 3 x " + std::to_string(num_nodes_));
+  if (num_muscles_ > 0) {
+    for (const fem::Vector* v : {&muscles.activations, &muscles.lengths, &muscles.velocities})
+      if (v->size() != num_muscles_)
+        throw std::invalid_argument(path_ + ": a muscle frame has " + std::to_string(v->size()) +
+                                    " entries, expected " + std::to_string(num_muscles_));
+  }
+  const QuietErrors quiet;
+  const Writer w(path_);
+  const auto frame = static_cast<hsize_t>(frames_);
+  // Eigen vectors are contiguous: 3 n + c is exactly the [N x 3] row-major frame layout.
+  w.append(h_->positions.get(), frame, H5T_NATIVE_DOUBLE, positions.data(), "positions");
+  w.append(h_->iterations.get(), frame, H5T_NATIVE_INT, &figures.iterations, "solver/iterations");
+  w.append(h_->residual.get(), frame, H5T_NATIVE_DOUBLE, &figures.residual, "solver/residual");
+  w.append(h_->wall_time.get(), frame, H5T_NATIVE_DOUBLE, &figures.wall_time, "solver/wall_time");
+  w.append(h_->cuts.get(), frame, H5T_NATIVE_INT, &figures.cuts, "solver/cuts");
+  if (num_muscles_ > 0) {
+    w.append(h_->activations.get(), frame, H5T_NATIVE_DOUBLE, muscles.activations.data(),
+             "activations");
+    w.append(h_->muscle_length.get(), frame, H5T_NATIVE_DOUBLE, muscles.lengths.data(),
+             "muscles/length");
+    w.append(h_->muscle_velocity.get(), frame, H5T_NATIVE_DOUBLE, muscles.velocities.data(),
+             "muscles/velocity");
+  }
+  // time last: a reader that sees T times finds T frames in every other dataset.
+  w.append(h_->time.get(), frame, H5T_NATIVE_DOUBLE, &time, "time");
+  ++frames_;
+  const double now = now_seconds();
+  if (now - last_flush_ >= flush_interval_) flush();
+}
+
+void RunFileWriter::set_attribute(const std::string& name, const std::string& value) {
+  const QuietErrors quiet;
+  Writer(path_).string_attribute(h_->file.get(), name, value);
+}
+
+void RunFileWriter::flush() {
+  const QuietErrors quiet;
+  Writer(path_).check(H5Fflush(h_->file.get(), H5F_SCOPE_LOCAL), "flush");
+  last_flush_ = now_seconds();
+}
+
+}  // namespace tongue::run_file

@@ -1,0 +1,85 @@
+#include "scene_run/scene_run.hpp"
+
+#include <stdexcept>
+#include <utility>
+
+#include "scene_run/scene_run_file.hpp"
+
+namespace tongue::scene_run {
+
+SceneRun::SceneRun(const scene::Scene& scene, scene::BuiltScene built)
+    : scene_(scene), built_(std::move(built)), ellipticity_(*built_.solid) {
+  if (scene_.analysis.type != scene::AnalysisType::dynamic)
+    throw std::invalid_argument(scene_.source +
+                                ": a run needs a dynamic analysis (analysis.type: dynamic)");
+  levels_ = fem::Vector::Zero(num_muscles());
+  initial_u_ = fem::Vector::Zero(built_.solid->num_dofs());
+  u_ = v_ = initial_u_;
+}
+
+SceneRun::~SceneRun() = default;
+
+int SceneRun::num_muscles() const {
+  return built_.muscles ? built_.muscles->num_muscles() : 0;
+}
+
+fem::StaticReport SceneRun::start() {
+  fem::Vector u = fem::Vector::Zero(built_.solid->num_dofs());
+  if (built_.muscles) built_.muscles->set_activations(fem::Vector::Zero(num_muscles()));
+  fem::StaticReport report;
+  report.converged = true;
+  if (scene_.analysis.settle) report = fem::solve_static(*built_.system, u, built_.static_settings);
+  initial_u_ = u;
+  if (report.converged) restart();
+  return report;
+}
+
+void SceneRun::restart() {
+  levels_ = fem::Vector::Zero(num_muscles());
+  if (built_.muscles) built_.muscles->set_activations(levels_);
+  integrator_ = std::make_unique<fem::NewmarkIntegrator>(*built_.system, built_.dynamic_settings);
+  integrator_->initialize(initial_u_, fem::Vector::Zero(initial_u_.size()), 0.0);
+  accept();
+  step_ = 0;
+}
+
+void SceneRun::accept() {
+  u_ = integrator_->displacement();
+  v_ = integrator_->velocity();
+  time_ = integrator_->time();
+}
+
+StepResult SceneRun::step(double dt, const fem::Vector& levels) {
+  if (!integrator_) throw std::logic_error("SceneRun::step before start()");
+  if (levels.size() != num_muscles())
+    throw std::invalid_argument("SceneRun::step: " + std::to_string(levels.size()) +
+                                " activation levels for " + std::to_string(num_muscles()) +
+                                " muscles");
+  StepResult result;
+  if (built_.muscles) built_.muscles->set_activations(levels);
+  result.report = integrator_->step(dt);
+  if (!result.report.converged) {
+    // The state stays at the last accepted step, and so do the levels that led to it.
+    if (built_.muscles) built_.muscles->set_activations(levels_);
+    result.muscles = muscle_frame();
+    return result;
+  }
+  levels_ = levels;
+  accept();
+  ++step_;
+  result.muscles = muscle_frame();
+  result.ellipticity_loss = ellipticity_.first_loss(u_);
+  if (result.ellipticity_loss)
+    result.material_warning = fem::describe(*result.ellipticity_loss, built_.solid->material());
+  return result;
+}
+
+fem::Vector SceneRun::positions() const {
+  return built_.solid->rest_positions() + u_;
+}
+
+run_file::MuscleFrame SceneRun::muscle_frame() const {
+  return scene_muscle_frame(built_, u_, &v_);
+}
+
+}  // namespace tongue::scene_run

@@ -1,0 +1,95 @@
+#pragma once
+// The run of a built dynamic scene: the one place where a dynamic scene is started and stepped,
+// used by sim_batch, the server, the benchmarks and the tests that run scenes.
+//
+// Start-up order (docs/design.md, "Starting a dynamic run"):
+//  1. settle(): static equilibrium under the scene's loads with every muscle off, when the scene
+//     asks for it (analysis.settle); the settled state is the initial state of every restart.
+//  2. restart(): a fresh integrator at the initial state, at rest, time 0, step 0, muscles off.
+//     The initial acceleration and the damping's K0 are taken there with every muscle off: a
+//     step of force in a_0 would make the average-acceleration scheme's velocities flip sign
+//     from step to step in the stiff modes that the fibre end forces excite.
+//  3. step(dt, levels): the muscles act from the first step on, with the levels given for it.
+// Activations enter only as the argument of step(): nothing else sets them.
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "fem/assembly/ellipticity_monitor.hpp"
+#include "fem/integrator/newmark_integrator.hpp"
+#include "fem/integrator/static_solver.hpp"
+#include "run_file/run_file_writer.hpp"
+#include "scene/scene.hpp"
+#include "scene/scene_builder.hpp"
+
+namespace tongue::scene_run {
+
+// What one step did and reached.
+struct StepResult {
+  // The solver's figures. When !report.converged the run stays at the last accepted state
+  // (step(), time() and the state are unchanged) and report.message says why.
+  fem::StepReport report;
+  // Activations, lengths [m] and velocities [m/s] of the muscles at the new state (empty vectors
+  // without muscles); computed once per step for every consumer (state message, run file).
+  run_file::MuscleFrame muscles;
+  // The first loss of strong ellipticity of the material, reported once per run (a restart
+  // does not report it again), with describe()'s text for the user.
+  std::optional<fem::EllipticityLoss> ellipticity_loss;
+  std::string material_warning;  // empty unless ellipticity_loss
+};
+
+class SceneRun {
+ public:
+  // Throws std::invalid_argument naming the scene file when its analysis is not dynamic.
+  SceneRun(const scene::Scene& scene, scene::BuiltScene built);
+  ~SceneRun();
+  SceneRun(const SceneRun&) = delete;
+  SceneRun& operator=(const SceneRun&) = delete;
+
+  // Settles (when the scene says so) and restarts. Call once before the first step; the report
+  // has the settling's increments (none when the scene does not settle). When it says
+  // !converged the run cannot start: the initial state is the last accepted increment.
+  fem::StaticReport start();
+  // Back to the initial state (settled or rest), at rest, time 0, step 0, all activations 0.
+  // Nothing carries over (factorizations, previous dt), so a run after a restart repeats the
+  // first one exactly.
+  void restart();
+
+  // Advances by dt [s] with the activation levels [1] of every muscle (num_muscles() entries,
+  // each in [0, 1]; callers validate them with their own messages first) acting during the step.
+  // Throws std::invalid_argument for levels of the wrong size or out of range, std::logic_error
+  // before start().
+  StepResult step(double dt, const fem::Vector& levels);
+
+  const scene::Scene& scene() const { return scene_; }
+  const scene::BuiltScene& built() const { return built_; }
+  int num_muscles() const;
+
+  // The last accepted state (before start(): the rest state).
+  std::int64_t step_count() const { return step_; }  // accepted steps since the last restart
+  double time() const { return time_; }              // s
+  const fem::Vector& displacement() const { return u_; }  // m, full vector
+  const fem::Vector& velocity() const { return v_; }      // m/s, full vector
+  fem::Vector positions() const;                          // m, rest positions + displacement
+  const fem::Vector& levels() const { return levels_; }  // [1], of the last step (0 at step 0)
+  const fem::Vector& initial_displacement() const { return initial_u_; }  // m, of step 0
+  // The muscles' frame at the current state (what step() returns; at step 0: all activations 0).
+  run_file::MuscleFrame muscle_frame() const;
+
+ private:
+  const scene::Scene& scene_;
+  scene::BuiltScene built_;
+  std::unique_ptr<fem::NewmarkIntegrator> integrator_;
+  fem::EllipticityMonitor ellipticity_;
+  void accept();  // the integrator's state becomes the last accepted one
+
+  fem::Vector initial_u_;
+  fem::Vector u_, v_;  // m, m/s: the last accepted state (a failed step may leave the
+                       // integrator at a substep)
+  double time_ = 0.0;  // s
+  fem::Vector levels_;
+  std::int64_t step_ = 0;
+};
+
+}  // namespace tongue::scene_run
