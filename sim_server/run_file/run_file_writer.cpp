@@ -8,62 +8,21 @@
 #include <filesystem>
 #include <vector>
 
+#include "run_file/hdf5_handles.hpp"
+#include "run_file/run_file_layout.hpp"
 #include "run_file/xdmf_sidecar.hpp"
 
 namespace tongue::run_file {
 
 namespace {
 
-constexpr int kFormatVersion = 1;
+namespace L = layout;
+using detail::Id;
+using detail::QuietErrors;
 
 double now_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
-
-// HDF5 prints its error stack to stderr on every failed call by default; this class reports
-// failures as exceptions instead, so the stack is silenced while one of its calls runs.
-class QuietErrors {
- public:
-  QuietErrors() {
-    H5Eget_auto2(H5E_DEFAULT, &func_, &data_);
-    H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);
-  }
-  ~QuietErrors() { H5Eset_auto2(H5E_DEFAULT, func_, data_); }
-  QuietErrors(const QuietErrors&) = delete;
-  QuietErrors& operator=(const QuietErrors&) = delete;
-
- private:
-  H5E_auto2_t func_ = nullptr;
-  void* data_ = nullptr;
-};
-
-// Owns one HDF5 identifier and closes it with the matching H5?close.
-class Id {
- public:
-  using Closer = herr_t (*)(hid_t);
-  Id() = default;
-  Id(hid_t id, Closer close) : id_(id), close_(close) {}
-  Id(Id&& o) noexcept : id_(o.id_), close_(o.close_) { o.id_ = H5I_INVALID_HID; }
-  Id& operator=(Id&& o) noexcept {
-    if (this != &o) {
-      reset();
-      id_ = o.id_;
-      close_ = o.close_;
-      o.id_ = H5I_INVALID_HID;
-    }
-    return *this;
-  }
-  ~Id() { reset(); }
-  hid_t get() const { return id_; }
-  void reset() {
-    if (id_ >= 0 && close_) close_(id_);
-    id_ = H5I_INVALID_HID;
-  }
-
- private:
-  hid_t id_ = H5I_INVALID_HID;
-  Closer close_ = nullptr;
-};
 
 }  // namespace
 
@@ -87,7 +46,7 @@ class Writer {
     if (status < 0) fail(what);
   }
   [[noreturn]] void fail(const std::string& what) const {
-    throw RunFileError(path_ + ": HDF5 failed to " + what);
+    throw RunFileError(path_, "", "HDF5 failed to " + what);
   }
 
   void string_attribute(hid_t loc, const std::string& name, const std::string& value) const {
@@ -198,8 +157,8 @@ class Writer {
   }
 
   void describe(hid_t ds, const std::string& units, const std::string& description) const {
-    string_attribute(ds, "units", units);
-    string_attribute(ds, "description", description);
+    string_attribute(ds, L::kUnitsAttribute, units);
+    string_attribute(ds, L::kDescriptionAttribute, description);
   }
 
   std::string path_;
@@ -207,11 +166,11 @@ class Writer {
 
 }  // namespace
 
-RunFileWriter::RunFileWriter(const std::string& path, const fem::Mesh& mesh,
-                         const std::string& scene_text, const RunFileOptions& options,
-                         const std::vector<MuscleDescription>& muscles)
+RunFileWriter::RunFileWriter(const std::string& path, const MeshDescription& mesh,
+                             const std::string& scene_text, const RunFileOptions& options,
+                             const std::vector<MuscleDescription>& muscles)
     : path_(path),
-      num_nodes_(mesh.num_nodes()),
+      num_nodes_(static_cast<int>(mesh.nodes.size())),
       num_muscles_(static_cast<int>(muscles.size())),
       flush_interval_(options.flush_interval),
       h_(std::make_unique<Handles>()) {
@@ -219,42 +178,41 @@ RunFileWriter::RunFileWriter(const std::string& path, const fem::Mesh& mesh,
   std::error_code ec;
   if (!parent.empty()) std::filesystem::create_directories(parent, ec);
   if (ec)
-    throw RunFileError(path + ": cannot create directory " + parent.string() + ": " +
-                           ec.message());
+    throw RunFileError(path, "", "cannot create directory " + parent.string() + ": " + ec.message());
 
   const QuietErrors quiet;
   const Writer w(path);
   h_->file = Id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
-  if (h_->file.get() < 0) throw RunFileError(path + ": cannot create the HDF5 file");
+  if (h_->file.get() < 0) throw RunFileError(path, "", "cannot create the HDF5 file");
   const hid_t file = h_->file.get();
 
-  w.int_attribute(file, "format_version", kFormatVersion);
-  w.string_attribute(file, "length_unit", "m");
-  w.string_attribute(file, "time_unit", options.time_unit);
-  w.string_attribute(file, "scene_text", scene_text);
+  w.int_attribute(file, L::kFormatVersionAttribute, L::kFormatVersion);
+  w.string_attribute(file, L::kLengthUnitAttribute, "m");
+  w.string_attribute(file, L::kTimeUnitAttribute, options.time_unit);
+  w.string_attribute(file, L::kSceneTextAttribute, scene_text);
 
   const auto n = static_cast<hsize_t>(num_nodes_);
-  const auto e = static_cast<hsize_t>(mesh.num_elements());
+  const auto e = static_cast<hsize_t>(mesh.elements.size());
   std::vector<double> rest(3 * n);
   for (hsize_t i = 0; i < n; ++i)
     for (int c = 0; c < 3; ++c) rest[3 * i + c] = mesh.nodes[i][c];
   std::vector<int> elements(8 * e);
   for (hsize_t i = 0; i < e; ++i)
     std::copy(mesh.elements[i].begin(), mesh.elements[i].end(), elements.begin() + 8 * i);
-  w.fixed(file, "rest_positions", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {n, 3}, rest.data(), "m",
+  w.fixed(file, L::kRestPositions, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {n, 3}, rest.data(), "m",
           "node positions of the reference configuration");
-  w.fixed(file, "elements", H5T_STD_I32LE, H5T_NATIVE_INT, {e, 8}, elements.data(), "1",
+  w.fixed(file, L::kElements, H5T_STD_I32LE, H5T_NATIVE_INT, {e, 8}, elements.data(), "1",
           "hex8 connectivity: 0-based node indices, ANSYS SOLID185 node order");
   // Named sets, so that a picture tool can find landmarks and colour muscles without the scene.
   {
-    const Id mesh_group = w.group(file, "mesh");
-    const Id node_sets = w.group(mesh_group.get(), "node_sets");
+    const Id mesh_group = w.group(file, L::kMesh);
+    const Id node_sets = w.group(file, L::kNodeSets);
     for (const auto& [name, nodes] : mesh.node_sets)
-      w.fixed(node_sets.get(), name, H5T_STD_I32LE, H5T_NATIVE_INT, {nodes.size()}, nodes.data(),
-              "1", "0-based node indices of node set " + name);
-    const Id element_sets = w.group(mesh_group.get(), "element_sets");
+      w.fixed(file, L::node_set(name), H5T_STD_I32LE, H5T_NATIVE_INT, {nodes.size()},
+              nodes.data(), "1", "0-based node indices of node set " + name);
+    const Id element_sets = w.group(file, L::kElementSets);
     for (const auto& [name, elements] : mesh.element_sets)
-      w.fixed(element_sets.get(), name, H5T_STD_I32LE, H5T_NATIVE_INT, {elements.size()},
+      w.fixed(file, L::element_set(name), H5T_STD_I32LE, H5T_NATIVE_INT, {elements.size()},
               elements.data(), "1", "0-based element indices of element set " + name);
   }
 
@@ -265,31 +223,30 @@ RunFileWriter::RunFileWriter(const std::string& path, const fem::Mesh& mesh,
   const hsize_t scalar_chunk = 1024;
   const int z = options.deflate_level;
   h_->time = w.series(
-      file, "time", H5T_IEEE_F64LE, {}, scalar_chunk, z, options.time_unit,
+      file, L::kTime, H5T_IEEE_F64LE, {}, scalar_chunk, z, options.time_unit,
       options.time_unit == "s" ? "simulated time of each frame" : "load factor of each frame");
-  h_->positions = w.series(file, "positions", H5T_IEEE_F64LE, {n, 3}, chunk_frames, z, "m",
+  h_->positions = w.series(file, L::kPositions, H5T_IEEE_F64LE, {n, 3}, chunk_frames, z, "m",
                            "current node positions of each frame");
-  const Id solver = w.check(H5Gcreate2(file, "solver", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT),
-                            H5Gclose, "create group solver");
-  h_->iterations = w.series(solver.get(), "iterations", H5T_STD_I32LE, {}, scalar_chunk, z, "1",
+  const Id solver = w.group(file, L::kSolver);
+  h_->iterations = w.series(file, L::kIterations, H5T_STD_I32LE, {}, scalar_chunk, z, "1",
                             "Newton iterations since the previous frame, over all substeps");
-  h_->residual = w.series(solver.get(), "residual", H5T_IEEE_F64LE, {}, scalar_chunk, z, "N",
+  h_->residual = w.series(file, L::kResidual, H5T_IEEE_F64LE, {}, scalar_chunk, z, "N",
                           "final residual norm of the frame's step");
-  h_->wall_time = w.series(solver.get(), "wall_time", H5T_IEEE_F64LE, {}, scalar_chunk, z, "s",
+  h_->wall_time = w.series(file, L::kWallTime, H5T_IEEE_F64LE, {}, scalar_chunk, z, "s",
                            "wall-clock time since the previous frame");
-  h_->cuts = w.series(solver.get(), "cuts", H5T_STD_I32LE, {}, scalar_chunk, z, "1",
+  h_->cuts = w.series(file, L::kCuts, H5T_STD_I32LE, {}, scalar_chunk, z, "1",
                       "step halvings since the previous frame");
   if (num_muscles_ > 0) {
     const auto m = static_cast<hsize_t>(num_muscles_);
-    const Id group = w.group(file, "muscles");
+    const Id group = w.group(file, L::kMuscles);
     std::vector<std::string> names;
     std::vector<double> max_force;
     for (const auto& mu : muscles) {
       names.push_back(mu.name);
       max_force.push_back(mu.max_force);
     }
-    w.strings(group.get(), "names", names, "muscle names, in the order of every muscle dataset");
-    w.fixed(group.get(), "max_force", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {m}, max_force.data(), "N",
+    w.strings(file, L::kMuscleNames, names, "muscle names, in the order of every muscle dataset");
+    w.fixed(file, L::kMaxForce, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {m}, max_force.data(), "N",
             "tension at full activation");
     std::vector<int> fibre_muscle, offsets{0}, nodes;
     std::vector<double> weights, origins;
@@ -304,27 +261,27 @@ RunFileWriter::RunFileWriter(const std::string& path, const fem::Mesh& mesh,
     }
     if (!fibre_muscle.empty()) {
       const auto f = static_cast<hsize_t>(fibre_muscle.size());
-      const Id fibres = w.group(group.get(), "fibres");
-      w.fixed(fibres.get(), "muscle", H5T_STD_I32LE, H5T_NATIVE_INT, {f}, fibre_muscle.data(), "1",
+      const Id fibres = w.group(file, L::kFibres);
+      w.fixed(file, L::kFibreMuscle, H5T_STD_I32LE, H5T_NATIVE_INT, {f}, fibre_muscle.data(), "1",
               "index of the fibre's muscle in /muscles/names");
-      w.fixed(fibres.get(), "weight", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {f}, weights.data(), "1",
+      w.fixed(file, L::kFibreWeight, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {f}, weights.data(), "1",
               "share of the muscle's tension the fibre carries");
-      w.fixed(fibres.get(), "origin", H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {f, 3}, origins.data(),
+      w.fixed(file, L::kFibreOrigin, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {f, 3}, origins.data(),
               "m", "fixed bony attachment before the first node; NaN when the fibre has none");
-      w.fixed(fibres.get(), "node_offsets", H5T_STD_I32LE, H5T_NATIVE_INT, {f + 1}, offsets.data(),
+      w.fixed(file, L::kFibreNodeOffsets, H5T_STD_I32LE, H5T_NATIVE_INT, {f + 1}, offsets.data(),
               "1", "fibre k's nodes are nodes[node_offsets[k] .. node_offsets[k+1])");
-      w.fixed(fibres.get(), "nodes", H5T_STD_I32LE, H5T_NATIVE_INT,
+      w.fixed(file, L::kFibreNodes, H5T_STD_I32LE, H5T_NATIVE_INT,
               {static_cast<hsize_t>(nodes.size())}, nodes.data(), "1",
               "0-based node indices of every fibre, in order, fibre after fibre");
     }
     // Like the positions: about 64 KiB per chunk, at least one frame, at most 1024.
     const hsize_t muscle_chunk = std::clamp<hsize_t>(65536 / (m * sizeof(double)), 1, 1024);
-    h_->activations = w.series(file, "activations", H5T_IEEE_F64LE, {m}, muscle_chunk, z, "1",
+    h_->activations = w.series(file, L::kActivations, H5T_IEEE_F64LE, {m}, muscle_chunk, z, "1",
                                "activation level of each muscle, a fraction of max_force");
-    h_->muscle_length = w.series(group.get(), "length", H5T_IEEE_F64LE, {m}, muscle_chunk, z, "m",
+    h_->muscle_length = w.series(file, L::kMuscleLength, H5T_IEEE_F64LE, {m}, muscle_chunk, z, "m",
                                  "weighted mean fibre length of each muscle");
     h_->muscle_velocity =
-        w.series(group.get(), "velocity", H5T_IEEE_F64LE, {m}, muscle_chunk, z, "m/s",
+        w.series(file, L::kMuscleVelocity, H5T_IEEE_F64LE, {m}, muscle_chunk, z, "m/s",
                  "rate of change of the muscle length, positive when lengthening");
   }
   w.check(H5Fflush(file, H5F_SCOPE_LOCAL), "flush");
@@ -344,7 +301,7 @@ RunFileWriter::~RunFileWriter() {
     if (frames_ > 0 && H5Dread(h_->time.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
                                run.times.data()) < 0)
       run.times.clear();
-    const Id elements(H5Dopen2(h_->file.get(), "elements", H5P_DEFAULT), H5Dclose);
+    const Id elements(H5Dopen2(h_->file.get(), L::kElements, H5P_DEFAULT), H5Dclose);
     const Id element_space(H5Dget_space(elements.get()), H5Sclose);
     hsize_t dims[2] = {0, 0};
     if (H5Sget_simple_extent_dims(element_space.get(), dims, nullptr) == 2) {
@@ -356,13 +313,14 @@ RunFileWriter::~RunFileWriter() {
   // Datasets close before the file (members destroyed in reverse order of declaration).
 }
 
-void RunFileWriter::append(double time, const fem::Vector& positions, const SolverFigures& figures,
-                         const MuscleFrame& muscles) {
+void RunFileWriter::append(double time, const Eigen::VectorXd& positions,
+                           const SolverFigures& figures, const MuscleFrame& muscles) {
   if (positions.size() != 3 * num_nodes_)
     throw std::invalid_argument(path_ + ": positions have " + std::to_string(positions.size()) +
                                 " entries, expected 3 x " + std::to_string(num_nodes_));
   if (num_muscles_ > 0) {
-    for (const fem::Vector* v : {&muscles.activations, &muscles.lengths, &muscles.velocities})
+    for (const Eigen::VectorXd* v :
+         {&muscles.activations, &muscles.lengths, &muscles.velocities})
       if (v->size() != num_muscles_)
         throw std::invalid_argument(path_ + ": a muscle frame has " + std::to_string(v->size()) +
                                     " entries, expected " + std::to_string(num_muscles_));
@@ -371,21 +329,21 @@ void RunFileWriter::append(double time, const fem::Vector& positions, const Solv
   const Writer w(path_);
   const auto frame = static_cast<hsize_t>(frames_);
   // Eigen vectors are contiguous: 3 n + c is exactly the [N x 3] row-major frame layout.
-  w.append(h_->positions.get(), frame, H5T_NATIVE_DOUBLE, positions.data(), "positions");
-  w.append(h_->iterations.get(), frame, H5T_NATIVE_INT, &figures.iterations, "solver/iterations");
-  w.append(h_->residual.get(), frame, H5T_NATIVE_DOUBLE, &figures.residual, "solver/residual");
-  w.append(h_->wall_time.get(), frame, H5T_NATIVE_DOUBLE, &figures.wall_time, "solver/wall_time");
-  w.append(h_->cuts.get(), frame, H5T_NATIVE_INT, &figures.cuts, "solver/cuts");
+  w.append(h_->positions.get(), frame, H5T_NATIVE_DOUBLE, positions.data(), L::kPositions);
+  w.append(h_->iterations.get(), frame, H5T_NATIVE_INT, &figures.iterations, L::kIterations);
+  w.append(h_->residual.get(), frame, H5T_NATIVE_DOUBLE, &figures.residual, L::kResidual);
+  w.append(h_->wall_time.get(), frame, H5T_NATIVE_DOUBLE, &figures.wall_time, L::kWallTime);
+  w.append(h_->cuts.get(), frame, H5T_NATIVE_INT, &figures.cuts, L::kCuts);
   if (num_muscles_ > 0) {
     w.append(h_->activations.get(), frame, H5T_NATIVE_DOUBLE, muscles.activations.data(),
-             "activations");
+             L::kActivations);
     w.append(h_->muscle_length.get(), frame, H5T_NATIVE_DOUBLE, muscles.lengths.data(),
-             "muscles/length");
+             L::kMuscleLength);
     w.append(h_->muscle_velocity.get(), frame, H5T_NATIVE_DOUBLE, muscles.velocities.data(),
-             "muscles/velocity");
+             L::kMuscleVelocity);
   }
   // time last: a reader that sees T times finds T frames in every other dataset.
-  w.append(h_->time.get(), frame, H5T_NATIVE_DOUBLE, &time, "time");
+  w.append(h_->time.get(), frame, H5T_NATIVE_DOUBLE, &time, L::kTime);
   ++frames_;
   const double now = now_seconds();
   if (now - last_flush_ >= flush_interval_) flush();

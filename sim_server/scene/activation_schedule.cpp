@@ -1,10 +1,9 @@
 #include "scene/activation_schedule.hpp"
-#include "scene/number_text.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <string>
 
+#include "common/number_text.hpp"
 #include "scene/scene_reader.hpp"
 
 namespace tongue::scene {
@@ -74,7 +73,7 @@ ActivationSchedule::ActivationSchedule(const Scene& scene,
       // Round-off in a force written as the exact sum must not reject it.
       if (force > total * (1.0 + 1e-12))
         fail("force",
-             format(force) + " N exceeds the muscles' summed max_force, " + format(total) + " N");
+             common::number_text(force) + " N exceeds the muscles' summed max_force, " + common::number_text(total) + " N");
       step.level = std::min(1.0, force / total);
     }
     step.start = spec.start;

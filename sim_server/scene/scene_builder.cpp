@@ -1,10 +1,8 @@
 #include "scene/scene_builder.hpp"
-#include "scene/number_text.hpp"
 
 #include "model/active_stiffening.hpp"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <functional>
 #include <set>
@@ -15,6 +13,7 @@
 #include "fem/material/material_factory.hpp"
 #include "fem/mesh/ansys_reader.hpp"
 #include "fem/mesh/box_generator.hpp"
+#include "common/number_text.hpp"
 #include "scene/scene_reader.hpp"
 #include "model/default_tongue.hpp"
 
@@ -312,8 +311,8 @@ class Builder {
             if (it->second.first != value)
               fail("constraints[" + std::to_string(i) + "]",
                    "node " + std::to_string(node) + " component " + kComponentNames[component] +
-                       " is prescribed " + format(value) + " m here and " +
-                       format(it->second.first) + " m by constraints[" +
+                       " is prescribed " + common::number_text(value) + " m here and " +
+                       common::number_text(it->second.first) + " m by constraints[" +
                        std::to_string(it->second.second) + "]");
             continue;
           }

@@ -1,17 +1,14 @@
 #include "scene/scene_reader.hpp"
-#include "scene/number_text.hpp"
 
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
-#include <charconv>
-#include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <functional>
 #include <set>
-#include <sstream>
 
+#include "common/number_text.hpp"
+#include "common/yaml_reader.hpp"
 #include "fem/material/material_factory.hpp"
 #include "model/default_tongue.hpp"
 #include "model/tongue_muscles.hpp"
@@ -22,31 +19,13 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string format_error(const std::string& file, const std::string& key_path,
-                         const std::string& reason, int line) {
-  std::string s = file + ": " + (key_path.empty() ? "" : key_path + ": ") + reason;
-  if (line > 0) s += " (line " + std::to_string(line) + ")";
-  return s;
-}
+using common::child_path;
+using common::describe;
+using common::index_path;
+using common::join;
+using common::number_text;
+using common::present;
 
-// Shortest round-trip text of a number, so messages repeat exactly what was written.
-std::string join(const std::vector<std::string>& names) {
-  std::string s;
-  for (const auto& n : names) s += (s.empty() ? "" : ", ") + n;
-  return s;
-}
-
-std::string child_path(const std::string& path, const std::string& key) {
-  return path.empty() ? key : path + "." + key;
-}
-std::string index_path(const std::string& path, std::size_t i) {
-  return path + "[" + std::to_string(i) + "]";
-}
-
-// An empty value (`key:` with nothing after it) counts as omitted.
-bool present(const YAML::Node& n) {
-  return n.IsDefined() && !n.IsNull();
-}
 
 const char* const kComponentNames[3] = {"x", "y", "z"};
 
@@ -106,30 +85,23 @@ bool provided(const Scene& scene, const std::string& name) {
                      [&](const MuscleSpec& m) { return m.name == name; });
 }
 
-// One pass over the YAML tree. Every accessor takes the node and its key path, so that each
-// error names where it is.
-class Parser {
+// One pass over the YAML tree; the generic accessors (numbers, names, key checks, each naming
+// the key path in its error) are the shared reader's.
+class Parser : private common::YamlReader {
  public:
-  Parser(std::string source, std::string base_dir)
-      : source_(std::move(source)), base_dir_(std::move(base_dir)) {}
+  Parser(common::YamlReader yaml, std::string base_dir)
+      : YamlReader(std::move(yaml)), base_dir_(std::move(base_dir)) {}
 
-  Scene parse(const std::string& text) {
-    YAML::Node loaded;
-    try {
-      loaded = YAML::Load(text);
-    } catch (const YAML::ParserException& e) {
-      throw SceneError(source_, "", "YAML syntax error: " + e.msg, e.mark.line + 1);
-    }
-    const YAML::Node& root = loaded;  // const access never inserts keys
-    if (!present(root)) fail("", "the scene is empty", root);
+  Scene parse() const {
+    const YAML::Node& root = this->root();  // const access never inserts keys
     expect_map(root, "(top level)");
     check_keys(root, "",
                {"mesh", "material", "node_sets", "constraints", "gravity", "loads", "damping",
                 "muscles", "muscle_stiffening", "muscle_force_length", "activations", "analysis",
                 "solver", "output"});
     Scene scene;
-    scene.source = source_;
-    scene.text = text;
+    scene.source = source();
+    scene.text = file_text();
     scene.base_dir = base_dir_;
     read_mesh(required(root, "", "mesh"), "mesh", scene);
     read_material(required(root, "", "material"), "material", scene.material);
@@ -148,7 +120,7 @@ class Parser {
       scene.muscle_stiffening = positive(n, "muscle_stiffening", "");
       if (scene.muscle_stiffening < 1.0) {
         fail("muscle_stiffening",
-             "must be >= 1 (1: no stiffening), got " + format(scene.muscle_stiffening), n);
+             "must be >= 1 (1: no stiffening), got " + number_text(scene.muscle_stiffening), n);
       }
     }
     if (const auto n = root["muscle_force_length"]; present(n)) {
@@ -166,69 +138,7 @@ class Parser {
   }
 
  private:
-  // ---- errors and generic accessors ----
-
-  [[noreturn]] void fail(const std::string& path, const std::string& reason,
-                         const YAML::Node& at) const {
-    const int line = at.IsDefined() ? at.Mark().line + 1 : 0;
-    throw SceneError(source_, path, reason, line);
-  }
-
-  void expect_map(const YAML::Node& n, const std::string& path) const {
-    if (!n.IsMap()) fail(path, "expected a mapping of keys to values", n);
-  }
-
-  void expect_sequence(const YAML::Node& n, const std::string& path) const {
-    if (!n.IsSequence()) fail(path, "expected a list", n);
-  }
-
-  // Rejects unknown keys (listing the known ones) and keys given twice.
-  void check_keys(const YAML::Node& n, const std::string& path,
-                  const std::vector<std::string>& allowed, const std::string& noun = "key") const {
-    std::set<std::string> seen;
-    for (auto it = n.begin(); it != n.end(); ++it) {
-      if (!it->first.IsScalar()) fail(path, "keys must be plain names", it->first);
-      const std::string key = it->first.Scalar();
-      if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
-        fail(child_path(path, key), "unknown " + noun + " (known: " + join(allowed) + ")",
-             it->first);
-      if (!seen.insert(key).second) fail(child_path(path, key), noun + " given twice", it->first);
-    }
-  }
-
-  YAML::Node required(const YAML::Node& parent, const std::string& path,
-                      const std::string& key) const {
-    const YAML::Node n = parent[key];
-    if (!present(n)) fail(child_path(path, key), "missing required key", parent);
-    return n;
-  }
-
-  double number(const YAML::Node& n, const std::string& path) const {
-    double v = 0.0;
-    if (!n.IsScalar() || !YAML::convert<double>::decode(n, v))
-      fail(path, "expected a number, got " + describe(n), n);
-    if (!std::isfinite(v)) fail(path, "expected a finite number", n);
-    return v;
-  }
-
-  int integer(const YAML::Node& n, const std::string& path) const {
-    int v = 0;
-    if (!n.IsScalar() || !YAML::convert<int>::decode(n, v))
-      fail(path, "expected an integer, got " + describe(n), n);
-    return v;
-  }
-
-  bool boolean(const YAML::Node& n, const std::string& path) const {
-    bool v = false;
-    if (!n.IsScalar() || !YAML::convert<bool>::decode(n, v))
-      fail(path, "expected true or false, got " + describe(n), n);
-    return v;
-  }
-
-  std::string text(const YAML::Node& n, const std::string& path) const {
-    if (!n.IsScalar()) fail(path, "expected a name, got " + describe(n), n);
-    return n.Scalar();
-  }
+  // ---- scene-specific accessors ----
 
   // A set or muscle name: it names a dataset in the run file, where '/' would make a group.
   std::string name(const YAML::Node& n, const std::string& path) const {
@@ -245,20 +155,6 @@ class Parser {
     return v;
   }
 
-  double positive(const YAML::Node& n, const std::string& path, const std::string& unit) const {
-    const double v = number(n, path);
-    if (!(v > 0.0))
-      fail(path, "must be positive, got " + format(v) + (unit.empty() ? "" : " " + unit), n);
-    return v;
-  }
-
-  double non_negative(const YAML::Node& n, const std::string& path, const std::string& unit) const {
-    const double v = number(n, path);
-    if (v < 0.0)
-      fail(path, "must not be negative, got " + format(v) + (unit.empty() ? "" : " " + unit), n);
-    return v;
-  }
-
   // The zero-force length of the force-length relation, in [0, 1), or "constant".
   model::ActiveForceLength force_length(const YAML::Node& n, const std::string& path) const {
     if (n.IsScalar() && n.Scalar() == "constant")
@@ -271,20 +167,6 @@ class Parser {
            n);
     }
     return model::ActiveForceLength(v);
-  }
-
-  int at_least(const YAML::Node& n, const std::string& path, int lo) const {
-    const int v = integer(n, path);
-    if (v < lo)
-      fail(path, "must be at least " + std::to_string(lo) + ", got " + std::to_string(v), n);
-    return v;
-  }
-
-  static std::string describe(const YAML::Node& n) {
-    if (n.IsScalar()) return "'" + n.Scalar() + "'";
-    if (n.IsSequence()) return "a list";
-    if (n.IsMap()) return "a mapping";
-    return "nothing";
   }
 
   // ---- sections ----
@@ -327,7 +209,7 @@ class Parser {
     box.size = vec3(size, size_path);
     for (int i = 0; i < 3; ++i)
       if (!(box.size[i] > 0.0))
-        fail(index_path(size_path, i), "must be positive, got " + format(box.size[i]) + " m", size);
+        fail(index_path(size_path, i), "must be positive, got " + number_text(box.size[i]) + " m", size);
     const std::string div_path = child_path(path, "divisions");
     const YAML::Node div = required(n, path, "divisions");
     if (!div.IsSequence() || div.size() != 3) fail(div_path, "expected a list of 3 integers", div);
@@ -381,8 +263,8 @@ class Parser {
                                        [&](const fem::ParameterSpec& s) { return s.name == key; });
         if (!spec->in_range(v))
           fail(key_path,
-               format(v) + (spec->unit == "1" ? "" : " " + spec->unit) + " is out of range (" +
-                   format(spec->min) + ", " + format(spec->max) + "): " + spec->help,
+               number_text(v) + (spec->unit == "1" ? "" : " " + spec->unit) + " is out of range (" +
+                   number_text(spec->min) + ", " + number_text(spec->max) + "): " + spec->help,
                it->second);
         m.parameters[key] = v;
       }
@@ -648,7 +530,7 @@ class Parser {
         const std::string l_path = child_path(a_path, "level");
         const double v = number(level, l_path);
         if (v < 0.0 || v > 1.0)
-          fail(l_path, "must lie in [0, 1] (a fraction of max_force), got " + format(v), level);
+          fail(l_path, "must lie in [0, 1] (a fraction of max_force), got " + number_text(v), level);
         spec.level = v;
       } else {
         spec.force = non_negative(force, child_path(a_path, "force"), "N");
@@ -660,7 +542,7 @@ class Parser {
         const double end = number(e, e_path);
         if (!(end > spec.start))
           fail(e_path,
-               "must be later than start (" + format(spec.start) + " s), got " + format(end) + " s",
+               "must be later than start (" + number_text(spec.start) + " s), got " + number_text(end) + " s",
                e);
         spec.end = end;
       }
@@ -693,7 +575,7 @@ class Parser {
       // A step longer than the run is almost surely a unit slip (ms for s).
       if (present(duration) && a.dt > a.duration * (1.0 + 1e-12))
         fail(child_path(path, "dt"),
-             format(a.dt) + " s is longer than the duration " + format(a.duration) + " s", dt);
+             number_text(a.dt) + " s is longer than the duration " + number_text(a.duration) + " s", dt);
     }
     if (const auto s = n["load_steps"]; present(s))
       a.load_steps = at_least(s, child_path(path, "load_steps"), 1);
@@ -707,7 +589,7 @@ class Parser {
         a.newmark.gamma = number(g, child_path(nm_path, "gamma"));
         // gamma < 1/2 adds negative numerical damping: the scheme grows without bound.
         if (a.newmark.gamma < 0.5)
-          fail(child_path(nm_path, "gamma"), "must be at least 0.5, got " + format(a.newmark.gamma),
+          fail(child_path(nm_path, "gamma"), "must be at least 0.5, got " + number_text(a.newmark.gamma),
                g);
       }
     }
@@ -748,7 +630,7 @@ class Parser {
     });
     get("reform_ratio", [&](auto v, auto p) {
       s.reform_ratio = positive(v, p, "");
-      if (s.reform_ratio > 1.0) fail(p, "must not exceed 1, got " + format(s.reform_ratio), v);
+      if (s.reform_ratio > 1.0) fail(p, "must not exceed 1, got " + number_text(s.reform_ratio), v);
     });
   }
 
@@ -821,32 +703,18 @@ class Parser {
         fail(index_path("loads", i) + ".set", unknown(scene.loads[i].set), root["loads"][i]["set"]);
   }
 
-  std::string source_;
   std::string base_dir_;
 };
 
 }  // namespace
 
-SceneError::SceneError(const std::string& file, const std::string& key_path,
-                       const std::string& reason, int line)
-    : std::runtime_error(format_error(file, key_path, reason, line)),
-      file_(file),
-      key_path_(key_path),
-      reason_(reason),
-      line_(line) {}
-
 Scene read_scene(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw SceneError(path, "", "cannot open the scene file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw SceneError(path, "", "cannot read the scene file");
-  return parse_scene(text.str(), fs::path(path).parent_path().string(), path);
+  return Parser(common::YamlReader::load(path), fs::path(path).parent_path().string()).parse();
 }
 
 Scene parse_scene(const std::string& yaml_text, const std::string& base_dir,
                   const std::string& source_name) {
-  return Parser(source_name, base_dir).parse(yaml_text);
+  return Parser(common::YamlReader::parse(yaml_text, source_name), base_dir).parse();
 }
 
 }  // namespace tongue::scene

@@ -20,6 +20,16 @@ std::string utc_now_iso8601() {
 
 }  // namespace
 
+run_file::MeshDescription mesh_description(const fem::Mesh& mesh) {
+  run_file::MeshDescription d;
+  d.nodes.reserve(mesh.nodes.size());
+  for (const fem::Vec3& x : mesh.nodes) d.nodes.push_back({x.x(), x.y(), x.z()});
+  d.elements.assign(mesh.elements.begin(), mesh.elements.end());
+  d.node_sets = mesh.node_sets;
+  d.element_sets = mesh.element_sets;
+  return d;
+}
+
 std::unique_ptr<run_file::RunFileWriter> open_scene_run_file(const std::string& path, const scene::Scene& scene,
                                                  const scene::BuiltScene& built) {
   const bool dynamic = scene.analysis.type == scene::AnalysisType::dynamic;
@@ -39,7 +49,8 @@ std::unique_ptr<run_file::RunFileWriter> open_scene_run_file(const std::string& 
       muscles.push_back(std::move(d));
     }
   }
-  auto log = std::make_unique<run_file::RunFileWriter>(path, built.solid->mesh(), scene.text, options, muscles);
+  auto log = std::make_unique<run_file::RunFileWriter>(path, mesh_description(built.solid->mesh()),
+                                                      scene.text, options, muscles);
   log->set_attribute("analysis", dynamic ? "dynamic" : "static");
   // What frame 0 shows, so that pictures can compare the end with rest under gravity.
   log->set_attribute("initial_state",

@@ -4,11 +4,15 @@
 #include <memory>
 #include <string>
 
+#include "fem/mesh/mesh.hpp"
 #include "run_file/run_file_writer.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_builder.hpp"
 
 namespace tongue::scene_run {
+
+// The mesh as the run file takes it (run_file knows no FEM types): nodes, hexahedra, named sets.
+run_file::MeshDescription mesh_description(const fem::Mesh& mesh);
 
 // Creates the run file at path for a run of scene (built from it): a static run's time axis is
 // the load factor ("1"); root attributes analysis, initial_state and status = "running".
