@@ -1,4 +1,4 @@
-// The solver policies of issue 6 on the built-in tongue, through its scenes: a tongue at rest
+// The solver policies (docs/speed.md) on the built-in tongue, through its scenes: a tongue at rest
 // costs one residual per step and a change of activation is never skipped; the reused
 // factorization (the default) reaches the state full Newton reaches; two threads give the run of
 // one bit for bit.
