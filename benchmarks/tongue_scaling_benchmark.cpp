@@ -1,4 +1,4 @@
-// Cost of the built-in tongue against its element count (issue 6): the parts of one Newton
+// Cost of the built-in tongue against its element count (docs/speed.md): the parts of one Newton
 // iteration and the cost of a dynamic step at refinement 1, 2 (and 3 with --max-refinement 3),
 // with the exponent p of a least-squares fit cost ~ elements^p.
 //

@@ -1,7 +1,7 @@
-// The dynamic solver's policies on the built-in tongue, through its scenes: a tongue at rest
-// costs one residual per step and a change of activation is never skipped; the reused
-// factorization (the default) reaches the state full Newton reaches; two threads give the run of
-// one bit for bit.
+// The dynamic solver's policies (docs/speed.md) on the built-in tongue, through its scenes: a
+// tongue at rest costs one residual per step and a change of activation is never skipped; the
+// reused factorization (the default) reaches the state full Newton reaches; two threads give the
+// run of one bit for bit.
 #include <gtest/gtest.h>
 
 #include <algorithm>
