@@ -1,9 +1,9 @@
 #include "controller/command_line.hpp"
 
 #include <algorithm>
-#include <cmath>
 
 #include "bus/channels.hpp"
+#include "common/number_text.hpp"
 
 namespace tongue::controller {
 namespace {
@@ -37,16 +37,10 @@ void set_common(CommonOptions& o, const std::string& name, const std::string& va
       throw UsageError("--mode must be lockstep or realtime, not '" + value + "'");
     }
   } else if (name == "--max-steps") {
-    std::size_t used = 0;
-    long long steps = -1;
-    try {
-      steps = std::stoll(value, &used);
-    } catch (const std::exception&) {
-      used = 0;
-    }
-    if (used != value.size() || value.empty() || steps < 0)
+    const std::optional<long long> steps = common::parse_integer(value);
+    if (!steps || *steps < 0)
       throw UsageError("--max-steps must be an integer >= 0, not '" + value + "'");
-    o.max_steps = steps;
+    o.max_steps = *steps;
   } else if (name == "--timeout-s") {
     const double s = parse_number(name, value);
     if (!(s > 0.0) || s > kMaxTimeout)
@@ -58,16 +52,9 @@ void set_common(CommonOptions& o, const std::string& name, const std::string& va
 }  // namespace
 
 double parse_number(const std::string& option, const std::string& text) {
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (text.empty() || used != text.size() || !std::isfinite(v))
-    throw UsageError(option + " must be a number, not '" + text + "'");
-  return v;
+  const std::optional<double> v = common::parse_number(text);
+  if (!v) throw UsageError(option + " must be a number, not '" + text + "'");
+  return *v;
 }
 
 CommandLine parse_command_line(int argc, const char* const* argv,

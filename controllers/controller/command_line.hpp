@@ -48,8 +48,8 @@ CommandLine parse_command_line(int argc, const char* const* argv,
 // The usage lines of the common options, for each program's --help.
 std::string common_usage();
 
-// Number parsing for the programs' own options; UsageError naming the option when text is not
-// a whole finite number.
+// Number parsing for the programs' own options (the rule of common/number_text.hpp); UsageError
+// naming the option when text is not one finite number.
 double parse_number(const std::string& option, const std::string& text);
 
 }  // namespace tongue::controller

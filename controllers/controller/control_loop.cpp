@@ -2,15 +2,14 @@
 
 #include <algorithm>
 #include <chrono>
-#include <csignal>
 #include <cstdio>
 #include <deque>
 #include <optional>
 #include <stdexcept>
 
-#include "controller/interrupt.hpp"
+#include "common/interrupt.hpp"
+#include "common/number_text.hpp"
 #include "controller/muscle_selection.hpp"
-#include "controller/number_text.hpp"
 
 namespace tongue::controller {
 namespace {
@@ -30,7 +29,7 @@ int wait_ms(double until, double now) {
 }
 
 std::string seconds_text(double s) {
-  return number_text(s) + " s";
+  return common::number_text(s) + " s";
 }
 
 class Loop {
@@ -59,8 +58,7 @@ class Loop {
 
   bool interrupted() {
     if (!interrupts_.raised()) return false;
-    end(kExitOk, std::string("stopped by ") +
-                     (interrupts_.signal_number() == SIGTERM ? "SIGTERM" : "SIGINT"));
+    end(kExitInterrupted, std::string("stopped by ") + interrupts_.signal_name());
     return true;
   }
 
@@ -183,7 +181,7 @@ class Loop {
   const CommonOptions& options_;
   Controller& controller_;
   LoopOutcome& outcome_;
-  InterruptHandlers interrupts_;
+  common::InterruptHandlers interrupts_;
   ControllerBus bus_;
   Model model_;
   double state_deadline_ = 0.0;            // steady-clock s by which the next state must come

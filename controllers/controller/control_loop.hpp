@@ -13,24 +13,25 @@
 //    holds it). A step is answered once (a repeated state, e.g. "paused", is not answered again)
 //    unless the server was reset meanwhile (the step went down).
 // 4. The loop ends (exit 0) after the state of step N = min(--max-steps, the controller's last
-//    step), sending nothing for later steps; on SIGINT or SIGTERM (exit 0); with exit 4 when the
-//    model, the first state or any later state does not come within --timeout-s; with exit 2 when
-//    the server publishes an unconverged step (it stops there); with exit 1 on a bus error or an
-//    input that does not fit the model. A one-line summary goes to stderr in every case.
+//    step), sending nothing for later steps; on SIGINT or SIGTERM (exit 130); with exit 4 when
+//    the model, the first state or any later state does not come within --timeout-s; with exit 2
+//    when the server publishes an unconverged step (it stops there); with exit 1 on a bus error or
+//    an input that does not fit the model (common/exit_code.hpp). A one-line summary goes to
+//    stderr in every case.
 #include <cstdint>
 #include <string>
 
+#include "common/exit_code.hpp"
 #include "controller/command_line.hpp"
 #include "controller/controller.hpp"
 
 namespace tongue::controller {
 
-enum ExitCode : int {
-  kExitOk = 0,
-  kExitError = 1,         // bad command line, input file, bus error, input not fitting the model
-  kExitNotConverged = 2,  // the server published an unconverged step
-  kExitTimeout = 4,       // no model or state within --timeout-s
-};
+using common::kExitError;
+using common::kExitInterrupted;
+using common::kExitNotConverged;
+using common::kExitOk;
+using common::kExitTimeout;
 
 struct LoopCounts {
   std::int64_t states_received = 0;

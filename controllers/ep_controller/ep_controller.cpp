@@ -6,7 +6,7 @@
 
 #include "controller/input_error.hpp"
 #include "controller/muscle_selection.hpp"
-#include "controller/number_text.hpp"
+#include "common/number_text.hpp"
 #include "ep_controller/muscle_rho.hpp"
 
 namespace tongue::ep_controller {
@@ -26,7 +26,7 @@ EpController::EpController(MotorPlanSpec plan, EpSettings settings)
 
 void EpController::start(const controller::Model& model) {
   if (!(model.dt > 0.0) || !std::isfinite(model.dt))
-    throw std::runtime_error("the model's dt is " + controller::number_text(model.dt) + " s, not > 0");
+    throw std::runtime_error("the model's dt is " + common::number_text(model.dt) + " s, not > 0");
   dt_ = model.dt;
   names_ = model.muscle_names;
   plan_.emplace(spec_, names_);
@@ -66,8 +66,8 @@ void EpController::observe(const controller::State& state) {
     const double l = state.muscle_lengths[m], v = state.muscle_velocities[m];
     if (!std::isfinite(l) || !(l > 0.0) || !std::isfinite(v))
       throw std::runtime_error("the state of step " + std::to_string(state.step) + " gives " +
-                               names_[m] + " length " + controller::number_text(l) + " m, velocity " +
-                               controller::number_text(v) + " m/s: not usable feedback");
+                               names_[m] + " length " + common::number_text(l) + " m, velocity " +
+                               common::number_text(v) + " m/s: not usable feedback");
   }
   if (!have_rest_lengths_) {
     for (std::size_t m = 0; m < n; ++m) laws_[m].rest_length_mm = state.muscle_lengths[m] * kMmPerM;

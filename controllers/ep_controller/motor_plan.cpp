@@ -4,8 +4,8 @@
 
 #include "controller/input_error.hpp"
 #include "controller/muscle_selection.hpp"
-#include "controller/number_text.hpp"
-#include "controller/yaml_file.hpp"
+#include "common/number_text.hpp"
+#include "common/yaml_reader.hpp"
 
 namespace tongue::ep_controller {
 
@@ -33,16 +33,16 @@ struct Durations {
 };
 
 // Reads transition, hold and start where present in n (the top level or an entry).
-void read_durations(const controller::YamlFile& f, const YAML::Node& n, const std::string& path, Durations& d) {
-  if (const auto v = n["transition"]; controller::present(v))
-    d.transition_s = f.non_negative(v, controller::child_path(path, "transition"), "s");
-  if (const auto v = n["hold"]; controller::present(v))
-    d.hold_s = f.non_negative(v, controller::child_path(path, "hold"), "s");
-  if (const auto v = n["start"]; controller::present(v))
-    d.start_s = f.non_negative(v, controller::child_path(path, "start"), "s");
+void read_durations(const common::YamlReader& f, const YAML::Node& n, const std::string& path, Durations& d) {
+  if (const auto v = n["transition"]; common::present(v))
+    d.transition_s = f.non_negative(v, common::child_path(path, "transition"), "s");
+  if (const auto v = n["hold"]; common::present(v))
+    d.hold_s = f.non_negative(v, common::child_path(path, "hold"), "s");
+  if (const auto v = n["start"]; common::present(v))
+    d.start_s = f.non_negative(v, common::child_path(path, "start"), "s");
 }
 
-PlanEntry read_entry(const controller::YamlFile& f, const std::string& name, const YAML::Node& n,
+PlanEntry read_entry(const common::YamlReader& f, const std::string& name, const YAML::Node& n,
                      const std::string& path, const Durations& defaults) {
   PlanEntry e;
   e.name = name;
@@ -53,7 +53,7 @@ PlanEntry read_entry(const controller::YamlFile& f, const std::string& name, con
     e.track.targets_mm = f.numbers(n, path);
   } else if (n.IsMap()) {
     f.check_keys(n, path, {"targets", "transition", "hold", "start"});
-    e.track.targets_mm = f.numbers(f.required(n, path, "targets"), controller::child_path(path, "targets"));
+    e.track.targets_mm = f.numbers(f.required(n, path, "targets"), common::child_path(path, "targets"));
     read_durations(f, n, path, d);
   } else {
     f.fail(path,
@@ -71,7 +71,7 @@ PlanEntry read_entry(const controller::YamlFile& f, const std::string& name, con
   return e;
 }
 
-MotorPlanSpec plan_from(const controller::YamlFile& f) {
+MotorPlanSpec plan_from(const common::YamlReader& f) {
   const YAML::Node& root = f.root();
   f.expect_map(root, "(top level)");
   f.check_keys(root, "", {"transition", "hold", "start", "delta_lambda_mm", "rho"});
@@ -85,17 +85,17 @@ MotorPlanSpec plan_from(const controller::YamlFile& f) {
   for (auto it = plan.begin(); it != plan.end(); ++it) {
     const std::string name = it->first.Scalar();
     spec.entries.push_back(
-        read_entry(f, name, it->second, controller::child_path("delta_lambda_mm", name), defaults));
+        read_entry(f, name, it->second, common::child_path("delta_lambda_mm", name), defaults));
   }
-  if (const auto rho = root["rho"]; controller::present(rho)) {
+  if (const auto rho = root["rho"]; common::present(rho)) {
     f.expect_map(rho, "rho");
     f.check_unique_keys(rho, "rho");
     for (auto it = rho.begin(); it != rho.end(); ++it) {
       const std::string name = it->first.Scalar();
-      const std::string path = controller::child_path("rho", name);
+      const std::string path = common::child_path("rho", name);
       RhoEntry r{name, f.number(it->second, path), path, it->second.Mark().line + 1};
       if (!(r.rho_n > 0.0))
-        f.fail(path, "rho must be positive, got " + controller::number_text(r.rho_n) + " N", it->second);
+        f.fail(path, "rho must be positive, got " + common::number_text(r.rho_n) + " N", it->second);
       spec.rho.push_back(r);
     }
   }
@@ -105,11 +105,11 @@ MotorPlanSpec plan_from(const controller::YamlFile& f) {
 }  // namespace
 
 MotorPlanSpec read_motor_plan(const std::string& path) {
-  return plan_from(controller::YamlFile::load(path));
+  return plan_from(common::YamlReader::load(path));
 }
 
 MotorPlanSpec parse_motor_plan(const std::string& text, const std::string& source) {
-  return plan_from(controller::YamlFile::parse(text, source));
+  return plan_from(common::YamlReader::parse(text, source));
 }
 
 MotorPlan::MotorPlan(const MotorPlanSpec& spec, const std::vector<std::string>& muscle_names)

@@ -22,7 +22,7 @@ that start in it, START and END rounded to the nearest step start (t >= START - 
 t < END - dt/2, dt from the model), so that a time on the step grid is never split by round-off.
 Where several entries name one muscle, the last whose window holds sets its level.
 
---lcm-url URL    LCM provider (default udpm://239.255.76.67:7667?ttl=0)
+--lcm-url URL    LCM provider (default udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304)
 --prefix P       channel prefix of the server (default TONGUE_)
 --max-steps N    stop after answering state N - 1 and seeing state N
 --timeout-ms MS  give up (exit 1) when nothing comes from the server for MS ms (default 10000)
@@ -41,7 +41,8 @@ local lcm = require("lcm")
 local tongue_lcm = require("tongue_lcm")
 
 local PROG = "step_controller"
-local DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0"
+-- The same as kDefaultLcmUrl in sim_server/bus/channels.hpp (the C++ definition): keep them equal.
+local DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
 local SLICE_MS = 50             -- longest single wait on the bus
 local DESCRIBE_AFTER_MS = 250   -- ask for the model when it has not come by then
 

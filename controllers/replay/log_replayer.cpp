@@ -6,7 +6,7 @@
 
 #include "controller/input_error.hpp"
 #include "controller/muscle_selection.hpp"
-#include "controller/number_text.hpp"
+#include "common/number_text.hpp"
 
 namespace tongue::replay {
 namespace {
@@ -36,8 +36,8 @@ void LogReplayer::start(const controller::Model& model) {
           model.muscle_max_forces[static_cast<std::size_t>(it - model.muscle_names.begin())];
       if (served_force != log_.max_forces_n[j])
         fail("/muscles/max_force", log_.muscle_names[j] + " has F_max " +
-                                       controller::number_text(log_.max_forces_n[j]) + " N in the log, " +
-                                       controller::number_text(served_force) + " N on the server");
+                                       common::number_text(log_.max_forces_n[j]) + " N in the log, " +
+                                       common::number_text(served_force) + " N on the server");
     }
   }
   if (log_.resets > 0)
@@ -46,9 +46,9 @@ void LogReplayer::start(const controller::Model& model) {
   for (std::size_t k = 0; k < log_.frames(); ++k) {
     const double expected = static_cast<double>(k) * model.dt;
     if (std::abs(log_.time_s[k] - expected) > kTimeTolerance * model.dt)
-      fail("/time", "frame " + std::to_string(k) + " is at " + controller::number_text(log_.time_s[k]) +
+      fail("/time", "frame " + std::to_string(k) + " is at " + common::number_text(log_.time_s[k]) +
                         " s, step " + std::to_string(k) + " of the server (dt " +
-                        controller::number_text(model.dt) + " s) at " + controller::number_text(expected) +
+                        common::number_text(model.dt) + " s) at " + common::number_text(expected) +
                         " s: the log must hold every step of one run with the server's dt");
   }
 }

@@ -5,13 +5,13 @@
 
 #include "controller/input_error.hpp"
 #include "controller/muscle_selection.hpp"
-#include "controller/number_text.hpp"
-#include "controller/yaml_file.hpp"
+#include "common/number_text.hpp"
+#include "common/yaml_reader.hpp"
 
 namespace tongue::sequence_player {
 namespace {
 
-SequenceEntry read_entry(const controller::YamlFile& f, const YAML::Node& n, const std::string& path) {
+SequenceEntry read_entry(const common::YamlReader& f, const YAML::Node& n, const std::string& path) {
   f.expect_map(n, path);
   f.check_keys(n, path,
                {"muscle", "start", "end", "level", "force", "level_from", "level_to", "force_from",
@@ -19,23 +19,23 @@ SequenceEntry read_entry(const controller::YamlFile& f, const YAML::Node& n, con
   SequenceEntry e;
   e.key_path = path;
   e.line = n.Mark().line + 1;
-  e.muscle = f.text(f.required(n, path, "muscle"), controller::child_path(path, "muscle"));
-  if (const auto v = n["start"]; controller::present(v))
-    e.start_s = f.non_negative(v, controller::child_path(path, "start"), "s");
-  const bool has_end = controller::present(n["end"]);
+  e.muscle = f.text(f.required(n, path, "muscle"), common::child_path(path, "muscle"));
+  if (const auto v = n["start"]; common::present(v))
+    e.start_s = f.non_negative(v, common::child_path(path, "start"), "s");
+  const bool has_end = common::present(n["end"]);
   if (has_end) {
-    e.end_s = f.number(n["end"], controller::child_path(path, "end"));
+    e.end_s = f.number(n["end"], common::child_path(path, "end"));
     if (!(e.end_s > e.start_s))
-      f.fail(controller::child_path(path, "end"),
-             "must be after start (" + controller::number_text(e.start_s) + " s), got " + controller::number_text(e.end_s) +
+      f.fail(common::child_path(path, "end"),
+             "must be after start (" + common::number_text(e.start_s) + " s), got " + common::number_text(e.end_s) +
                  " s",
              n["end"]);
   }
 
   // Exactly one way of giving the value.
-  const bool level = controller::present(n["level"]), force = controller::present(n["force"]);
-  const bool level_ramp = controller::present(n["level_from"]) || controller::present(n["level_to"]);
-  const bool force_ramp = controller::present(n["force_from"]) || controller::present(n["force_to"]);
+  const bool level = common::present(n["level"]), force = common::present(n["force"]);
+  const bool level_ramp = common::present(n["level_from"]) || common::present(n["level_to"]);
+  const bool force_ramp = common::present(n["force_from"]) || common::present(n["force_to"]);
   if (level + force + level_ramp + force_ramp != 1)
     f.fail(path,
            "give exactly one of level, force (a step), level_from + level_to, force_from + "
@@ -43,12 +43,12 @@ SequenceEntry read_entry(const controller::YamlFile& f, const YAML::Node& n, con
            n);
   e.unit = level || level_ramp ? SequenceEntry::Unit::level : SequenceEntry::Unit::force;
   const auto value = [&](const char* key) {
-    const std::string p = controller::child_path(path, key);
+    const std::string p = common::child_path(path, key);
     const YAML::Node v = f.required(n, path, key);
     if (e.unit == SequenceEntry::Unit::level) {
       const double x = f.number(v, p);
       if (x < 0.0 || x > 1.0)
-        f.fail(p, "a level must be in [0, 1] of F_max, got " + controller::number_text(x), v);
+        f.fail(p, "a level must be in [0, 1] of F_max, got " + common::number_text(x), v);
       return x;
     }
     return f.non_negative(v, p, "N");
@@ -60,12 +60,12 @@ SequenceEntry read_entry(const controller::YamlFile& f, const YAML::Node& n, con
     const std::string stem = level_ramp ? "level" : "force";
     e.from = value((stem + "_from").c_str());
     e.to = value((stem + "_to").c_str());
-    if (!has_end) f.fail(controller::child_path(path, "end"), "a ramp needs an end time", n);
+    if (!has_end) f.fail(common::child_path(path, "end"), "a ramp needs an end time", n);
   }
   return e;
 }
 
-SequenceSpec sequence_from(const controller::YamlFile& f) {
+SequenceSpec sequence_from(const common::YamlReader& f) {
   const YAML::Node& root = f.root();
   f.expect_map(root, "(top level)");
   f.check_keys(root, "", {"duration", "entries"});
@@ -73,13 +73,13 @@ SequenceSpec sequence_from(const controller::YamlFile& f) {
   f.expect_sequence(list, "entries");
   SequenceSpec spec;
   spec.source = f.source();
-  if (const auto d = root["duration"]; controller::present(d)) {
+  if (const auto d = root["duration"]; common::present(d)) {
     spec.duration_s = f.number(d, "duration");
     if (!(*spec.duration_s > 0.0))
-      f.fail("duration", "must be positive, got " + controller::number_text(*spec.duration_s) + " s", d);
+      f.fail("duration", "must be positive, got " + common::number_text(*spec.duration_s) + " s", d);
   }
   for (std::size_t i = 0; i < list.size(); ++i)
-    spec.entries.push_back(read_entry(f, list[i], controller::index_path("entries", i)));
+    spec.entries.push_back(read_entry(f, list[i], common::index_path("entries", i)));
   return spec;
 }
 
@@ -91,11 +91,11 @@ std::int64_t steps_covering(double duration_s, double dt_s) {
 }
 
 SequenceSpec read_sequence(const std::string& path) {
-  return sequence_from(controller::YamlFile::load(path));
+  return sequence_from(common::YamlReader::load(path));
 }
 
 SequenceSpec parse_sequence(const std::string& text, const std::string& source) {
-  return sequence_from(controller::YamlFile::parse(text, source));
+  return sequence_from(common::YamlReader::parse(text, source));
 }
 
 ActivationSequence::ActivationSequence(const SequenceSpec& spec,
@@ -107,7 +107,7 @@ ActivationSequence::ActivationSequence(const SequenceSpec& spec,
     Resolved r;
     r.muscles = controller::select_muscles(e.muscle, muscle_names);
     if (r.muscles.empty())
-      throw controller::InputError(spec.source, controller::child_path(e.key_path, "muscle"),
+      throw controller::InputError(spec.source, common::child_path(e.key_path, "muscle"),
                        "no muscle is named '" + e.muscle + "' or starts with '" + e.muscle +
                            "_' (the server's muscles: " + controller::joined_names(muscle_names) + ")",
                        e.line);
@@ -124,8 +124,8 @@ ActivationSequence::ActivationSequence(const SequenceSpec& spec,
       // Round-off in a force written as the exact sum must not reject it.
       if (largest > total * (1.0 + 1e-12))
         throw controller::InputError(spec.source, e.key_path,
-                         controller::number_text(largest) + " N exceeds the summed F_max of " + e.muscle +
-                             ", " + controller::number_text(total) + " N",
+                         common::number_text(largest) + " N exceeds the summed F_max of " + e.muscle +
+                             ", " + common::number_text(total) + " N",
                          e.line);
       r.from_level = std::min(1.0, e.from / total);
       r.to_level = std::min(1.0, e.to / total);

@@ -21,7 +21,6 @@ class ChildProcess {
   ChildProcess(const ChildProcess&) = delete;
   ChildProcess& operator=(const ChildProcess&) = delete;
 
-  pid_t pid() const { return pid_; }
   bool running();  // reaps the child when it has ended
   // The wait status once it has ended (see describe_status); nullopt while running.
   std::optional<int> status();

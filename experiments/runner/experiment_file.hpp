@@ -19,9 +19,10 @@
 // Every controller is started with --lcm-url, --prefix and --max-steps appended (the project's
 // controllers also get --mode); other programs must accept those three.
 #include <filesystem>
-#include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "common/key_path_error.hpp"
 
 namespace tongue::runner {
 
@@ -48,15 +49,8 @@ struct Experiment {
   std::filesystem::path folder() const { return file.parent_path(); }
 };
 
-// what() reads "<file>: <key>: <reason>".
-class ExperimentError : public std::runtime_error {
- public:
-  ExperimentError(const std::string& file, const std::string& key, const std::string& reason)
-      : std::runtime_error(file + ": " + (key.empty() ? "" : key + ": ") + reason) {}
-};
-
 // Reads and checks the file (keys, types, ranges, that the scene file exists); the scene itself
-// is checked by the scene reader.
+// is checked by the scene reader. Throws common::KeyPathError naming the file and the key.
 Experiment read_experiment(const std::filesystem::path& path);
 
 }  // namespace tongue::runner

@@ -1,6 +1,7 @@
 #include "experiment_run.hpp"
 
 #include <signal.h>
+#include <sys/wait.h>
 
 #include <chrono>
 #include <cmath>
@@ -17,6 +18,7 @@
 
 #include "bus/channels.hpp"
 #include "bus/messages.hpp"
+#include "common/exit_code.hpp"
 #include "child_process.hpp"
 #include "project_programs.hpp"
 #include "run_figures.hpp"
@@ -138,7 +140,7 @@ std::string format(const char* fmt, double a, double b = 0.0, double c = 0.0) {
 }  // namespace
 
 RunOutcome run_experiment(const Experiment& e, const RunSettings& settings,
-                          const volatile std::sig_atomic_t& interrupted) {
+                          const common::InterruptHandlers& interrupt) {
   const scene::Scene scene = scene::read_scene(e.scene.string());
   if (scene.analysis.type != scene::AnalysisType::dynamic) {
     throw scene::SceneError(e.scene.string(), "analysis.type", "an experiment needs dynamic");
@@ -152,8 +154,7 @@ RunOutcome run_experiment(const Experiment& e, const RunSettings& settings,
   fs::copy_file(e.file, folder / "experiment.yaml");
   fs::copy_file(e.scene, folder / "scene.yaml");
 
-  const std::string url =
-      "udpm://239.255.76.67:" + std::to_string(e.port) + "?ttl=0&recv_buf_size=4194304";
+  const std::string url = bus::default_lcm_url_on_port(e.port);
   const bus::Channels channels(e.prefix);
   const fs::path run_file = fs::absolute(folder / "run.h5");
   const fs::path bus_log = fs::absolute(folder / "bus.lcmlog");
@@ -201,7 +202,7 @@ RunOutcome run_experiment(const Experiment& e, const RunSettings& settings,
     while (failure.empty() && !watcher.last_step()) {
       watcher.poll(50);
       if (!server.process->running()) failure = "sim_server ended before its first state";
-      if (interrupted) failure = "interrupted";
+      if (interrupt.raised()) failure = "interrupted";
       if (seconds_since(began) > e.timeout) failure = "no state from sim_server within the timeout";
     }
     if (failure.empty()) {
@@ -228,7 +229,7 @@ RunOutcome run_experiment(const Experiment& e, const RunSettings& settings,
       }
     }
     if (e.lcm_log && !logger.process->running()) failure = "lcm-logger ended during the run";
-    if (interrupted) failure = "interrupted";
+    if (interrupt.raised()) failure = "interrupted";
     const double wall = seconds_since(began);
     if (wall > e.timeout) failure = format("timeout: %.0f s of wall-clock time", e.timeout);
     if (settings.progress && wall - last_progress >= 1.0) {
@@ -340,6 +341,13 @@ RunOutcome run_experiment(const Experiment& e, const RunSettings& settings,
   if (failure.empty() && !figures_error.empty()) failure = "the run file cannot be read";
   s << "\nresult: " << (failure.empty() ? "completed" : "FAILED: " + failure) << "\n";
   outcome.ok = failure.empty();
+  const bool unconverged = watcher.any_unconverged() ||
+                           (server.status && WIFEXITED(*server.status) &&
+                            WEXITSTATUS(*server.status) == common::kExitNotConverged);
+  outcome.exit_code = outcome.ok                  ? common::kExitOk
+                      : interrupt.raised()        ? common::kExitInterrupted
+                      : unconverged               ? common::kExitNotConverged
+                                                  : common::kExitError;
   outcome.summary = s.str();
   std::ofstream(folder / "summary.txt") << outcome.summary;
   return outcome;

@@ -6,22 +6,20 @@
 // logged), and collects the run file, the LCM log, every process's output, a summary and plots
 // in DIR/<name>-<UTC time>/ (DIR defaults to logs).
 //
-// Exit status: 0 completed; 1 bad command line, experiment or scene file; 2 the run failed
-// (a process ended badly, timeout, interrupted; the summary says which).
-#include <csignal>
+// Exit status (common/exit_code.hpp): 0 completed; 1 bad command line, experiment or scene
+// file, or a run that failed otherwise (a process ended badly, the wall-clock timeout; the
+// summary says which); 2 the server published an unconverged step; 130 interrupted.
 #include <cstdio>
-#include <cstdlib>
+#include <optional>
 #include <string>
 
+#include "common/exit_code.hpp"
+#include "common/interrupt.hpp"
+#include "common/number_text.hpp"
 #include "experiment_file.hpp"
 #include "experiment_run.hpp"
 
 namespace {
-
-volatile std::sig_atomic_t g_interrupted = 0;
-extern "C" void on_interrupt(int) {
-  g_interrupted = 1;
-}
 
 void print_usage(std::FILE* to) {
   std::fprintf(to,
@@ -37,6 +35,7 @@ void print_usage(std::FILE* to) {
 
 int main(int argc, char** argv) {
   using namespace tongue::runner;
+  using namespace tongue::common;
   std::string path;
   RunSettings settings;
   int port = 0;
@@ -45,15 +44,16 @@ int main(int argc, char** argv) {
     const bool has_value = i + 1 < argc;
     if (arg == "--help" || arg == "-h") {
       print_usage(stdout);
-      return 0;
+      return kExitOk;
     } else if (arg == "--logs" && has_value) {
       settings.root = argv[++i];
     } else if (arg == "--port" && has_value) {
-      port = std::atoi(argv[++i]);
-      if (port < 1024 || port > 65535) {
+      const std::optional<long long> p = parse_integer(argv[++i]);
+      if (!p || *p < 1024 || *p > 65535) {
         std::fprintf(stderr, "run_experiment: --port must be in [1024, 65535]\n");
-        return 1;
+        return kExitError;
       }
+      port = static_cast<int>(*p);
     } else if (arg == "--no-plots") {
       settings.plots = false;
     } else if (arg == "--quiet") {
@@ -63,16 +63,15 @@ int main(int argc, char** argv) {
     } else {
       std::fprintf(stderr, "run_experiment: unexpected argument '%s'\n", arg.c_str());
       print_usage(stderr);
-      return 1;
+      return kExitError;
     }
   }
   if (path.empty()) {
     print_usage(stderr);
-    return 1;
+    return kExitError;
   }
 
-  std::signal(SIGINT, on_interrupt);
-  std::signal(SIGTERM, on_interrupt);
+  const InterruptHandlers interrupt;
   try {
     Experiment experiment = read_experiment(path);
     if (port != 0) experiment.port = port;
@@ -80,16 +79,15 @@ int main(int argc, char** argv) {
       std::printf("experiment %s: %s on port %d\n", experiment.name.c_str(),
                   experiment.scene.filename().c_str(), experiment.port);
     }
-    const RunOutcome outcome = run_experiment(experiment, settings, g_interrupted);
+    const RunOutcome outcome = run_experiment(experiment, settings, interrupt);
     std::fputs(outcome.summary.c_str(), stdout);
     if (!outcome.ok) {
       std::fprintf(stderr, "run_experiment: the run failed; everything is kept in %s\n",
                    outcome.folder.c_str());
-      return 2;
     }
-    return 0;
+    return outcome.exit_code;
   } catch (const std::exception& ex) {
     std::fprintf(stderr, "run_experiment: %s\n", ex.what());
-    return 1;
+    return kExitError;
   }
 }

@@ -1,6 +1,6 @@
 #pragma once
 // The figures a run summary quotes, read back from what the run left on disk: the HDF5 run file
-// (sim_server/run_file/run_file_writer.hpp) and the LCM log of the bus.
+// (read with run_file/run_file_reader.hpp) and the LCM log of the bus.
 #include <array>
 #include <filesystem>
 #include <optional>
@@ -26,7 +26,7 @@ struct RunFigures {
   std::vector<LandmarkMotion> landmarks;  // the landmark sets the mesh has
 };
 
-// Throws std::runtime_error naming the file and dataset when something is missing.
+// Throws run_file::RunFileError naming the file and dataset when something is missing.
 RunFigures read_run_figures(const std::filesystem::path& run_file);
 
 struct BusFigures {

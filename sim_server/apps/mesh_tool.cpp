@@ -7,10 +7,10 @@
 // after Luboz et al. (2001), writing it back in the same format with the original ids.
 // --scale is the length of one file unit in metres (1e-3 for a file in mm; default 1).
 //
-// Exit status: 0 every element regular (after regularization, for regularize); 1 bad command
-// line, unreadable or malformed mesh, or an output that cannot be written; 3 irregular elements
-// remain (regularize still writes its best attempt, for inspection).
-#include <cmath>
+// Exit status (common/exit_code.hpp): 0 every element regular (after regularization, for
+// regularize); 1 bad command line, unreadable or malformed mesh, an output that cannot be
+// written, or irregular elements remaining: the mesh is bad input for a scene (regularize still
+// writes its best attempt, for inspection; the report on stdout says which elements).
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -19,6 +19,8 @@
 #include <string>
 #include <vector>
 
+#include "common/exit_code.hpp"
+#include "common/number_text.hpp"
 #include "fem/mesh/ansys_reader.hpp"
 #include "fem/mesh/ansys_writer.hpp"
 #include "fem/mesh/mesh_quality.hpp"
@@ -27,9 +29,10 @@
 namespace tongue::apps {
 namespace {
 
-constexpr int kExitOk = 0;
-constexpr int kExitError = 1;
-constexpr int kExitIrregular = 3;
+using common::kExitError;
+using common::kExitOk;
+// Irregular elements make the mesh unusable: an input error, not a silence (3).
+constexpr int kExitIrregular = common::kExitError;
 constexpr int kMaxIdsListed = 20;
 
 struct Options {
@@ -48,14 +51,7 @@ void print_usage(std::FILE* to) {
                "  NODES, ELEMENTS          ANSYS NWRITE node and EWRITE element text files\n"
                "  --scale S                metres per file unit (1e-3 for mm; default 1)\n"
                "  --max-displacement-mm D  no node moves farther than D mm (default 1)\n"
-               "exit status: 0 all elements regular, 3 irregular elements remain, 1 error\n");
-}
-
-bool parse_number(const std::string& text, double& value) {
-  if (text.empty()) return false;
-  char* end = nullptr;
-  value = std::strtod(text.c_str(), &end);
-  return end == text.c_str() + text.size() && std::isfinite(value);
+               "exit status: 0 all elements regular, 1 irregular elements remain or error\n");
 }
 
 // Returns nullopt (after printing why) on a bad command line.
@@ -82,17 +78,21 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
     } else if (arg == "--out-elements") {
       o.out_elements = value;
     } else if (arg == "--scale") {
-      if (!parse_number(value, o.scale) || !(o.scale > 0)) {
+      const std::optional<double> scale = common::parse_number(value);
+      if (!scale || !(*scale > 0)) {
         std::fprintf(stderr, "mesh_tool: --scale needs a positive number, got '%s'\n",
                      value.c_str());
         return std::nullopt;
       }
+      o.scale = *scale;
     } else if (arg == "--max-displacement-mm") {
-      if (!parse_number(value, o.max_displacement_mm) || o.max_displacement_mm < 0) {
+      const std::optional<double> d = common::parse_number(value);
+      if (!d || *d < 0) {
         std::fprintf(stderr, "mesh_tool: --max-displacement-mm needs a number >= 0, got '%s'\n",
                      value.c_str());
         return std::nullopt;
       }
+      o.max_displacement_mm = *d;
     } else {
       std::fprintf(stderr, "mesh_tool: unknown option '%s'\n", arg.c_str());
       return std::nullopt;

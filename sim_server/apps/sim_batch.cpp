@@ -6,12 +6,12 @@
 // scene's activation schedule: a dynamic step to t_{n+1} uses the levels at t_{n+1} (the initial
 // state, settling included, has every muscle off), a static solve those at t = 0.
 //
-// Exit status: 0 done; 1 bad command line, scene error or I/O error; 2 a step or load increment
-// failed to converge even after cuts (the frames written so far are kept); 130 interrupted.
+// Exit status (common/exit_code.hpp): 0 done; 1 bad command line, scene error or I/O error; 2 a
+// step or load increment failed to converge even after cuts (the frames written so far are
+// kept); 130 interrupted.
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -19,6 +19,8 @@
 #include <optional>
 #include <string>
 
+#include "common/exit_code.hpp"
+#include "common/interrupt.hpp"
 #include "fem/assembly/ellipticity_monitor.hpp"
 #include "scene_run/scene_run.hpp"
 #include "fem/integrator/static_solver.hpp"
@@ -31,15 +33,10 @@
 namespace tongue::apps {
 namespace {
 
-constexpr int kExitOk = 0;
-constexpr int kExitError = 1;
-constexpr int kExitNotConverged = 2;
-constexpr int kExitInterrupted = 130;
-
-volatile std::sig_atomic_t g_interrupted = 0;
-extern "C" void on_interrupt(int) {
-  g_interrupted = 1;
-}
+using common::kExitError;
+using common::kExitInterrupted;
+using common::kExitNotConverged;
+using common::kExitOk;
 
 struct Options {
   std::string scene_path;
@@ -114,8 +111,8 @@ struct Tally {
 class BatchRun {
  public:
   BatchRun(const scene::Scene& scene, scene::BuiltScene built, const std::string& output,
-           bool quiet)
-      : scene_(scene), quiet_(quiet) {
+           bool quiet, const common::InterruptHandlers& interrupt)
+      : scene_(scene), quiet_(quiet), interrupt_(interrupt) {
     if (is_dynamic()) {
       run_ = std::make_unique<scene_run::SceneRun>(scene_, std::move(built));
     } else {
@@ -223,7 +220,7 @@ class BatchRun {
     header("step", "t [s]");
     Tally since_frame;
     for (int s = 0; s < count; ++s) {
-      if (g_interrupted) {
+      if (interrupt_.raised()) {
         std::fprintf(stderr, "sim_batch: interrupted at t = %.6g s\n", run.time());
         return kExitInterrupted;
       }
@@ -364,6 +361,7 @@ class BatchRun {
   const scene::Scene& scene_;
   scene::BuiltScene built_;
   bool quiet_;
+  const common::InterruptHandlers& interrupt_;
   std::unique_ptr<run_file::RunFileWriter> log_;
   Tally total_;
   Tally stepping_;  // the dynamic steps alone
@@ -386,9 +384,8 @@ int run(int argc, char** argv) {
     const scene::Scene scene = scene::read_scene(options->scene_path);
     scene::BuiltScene built = scene::build_scene(scene);
     const std::string output = options->output ? *options->output : scene.output.file;
-    std::signal(SIGINT, on_interrupt);
-    std::signal(SIGTERM, on_interrupt);
-    BatchRun batch(scene, std::move(built), output, options->quiet);
+    const common::InterruptHandlers interrupt;
+    BatchRun batch(scene, std::move(built), output, options->quiet, interrupt);
     return batch.run();
   } catch (const scene::SceneError& e) {
     std::fprintf(stderr, "sim_batch: scene error: %s\n", e.what());

@@ -4,7 +4,8 @@
 // <prefix>COMMAND, so that a user or a script can steer a server from a shell. It does not wait
 // for an answer: the server reports what it did on its own stderr and in its next state.
 //
-// Exit status: 0 sent; 1 bad command line or the bus could not be opened or written.
+// Exit status (common/exit_code.hpp): 0 sent; 1 bad command line or the bus could not be opened
+// or written.
 #include <chrono>
 #include <cstdio>
 #include <string>
@@ -14,6 +15,7 @@
 
 #include "bus/channels.hpp"
 #include "bus/messages.hpp"
+#include "common/exit_code.hpp"
 
 namespace {
 
@@ -38,6 +40,8 @@ bool is_command(std::string_view word) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  using tongue::common::kExitError;
+  using tongue::common::kExitOk;
   std::string command;
   std::string url(tongue::bus::kDefaultLcmUrl);
   std::string prefix(tongue::bus::kDefaultChannelPrefix);
@@ -45,32 +49,32 @@ int main(int argc, char** argv) {
     const std::string arg = argv[i];
     if (arg == "--help" || arg == "-h") {
       print_usage(stdout);
-      return 0;
+      return kExitOk;
     }
     if (arg == "--lcm-url" || arg == "--prefix") {
       if (i + 1 >= argc) {
         std::fprintf(stderr, "sim_command: %s needs a value\n", arg.c_str());
-        return 1;
+        return kExitError;
       }
       (arg == "--lcm-url" ? url : prefix) = argv[++i];
     } else if (!command.empty() || !is_command(arg)) {
       std::fprintf(stderr, "sim_command: unexpected argument '%s'\n", arg.c_str());
       print_usage(stderr);
-      return 1;
+      return kExitError;
     } else {
       command = arg;
     }
   }
   if (command.empty()) {
     print_usage(stderr);
-    return 1;
+    return kExitError;
   }
   try {
     const tongue::bus::Channels channels(prefix);
     lcm::LCM lcm(url);
     if (!lcm.good()) {
       std::fprintf(stderr, "sim_command: cannot open the LCM bus '%s'\n", url.c_str());
-      return 1;
+      return kExitError;
     }
     tongue_lcm::lcmt_tongue_command message;
     message.utime = std::chrono::duration_cast<std::chrono::microseconds>(
@@ -79,11 +83,11 @@ int main(int argc, char** argv) {
     message.command = command;
     if (lcm.publish(channels.command, &message) != 0) {
       std::fprintf(stderr, "sim_command: could not publish on %s\n", channels.command.c_str());
-      return 1;
+      return kExitError;
     }
   } catch (const std::exception& e) {
     std::fprintf(stderr, "sim_command: %s\n", e.what());
-    return 1;
+    return kExitError;
   }
-  return 0;
+  return kExitOk;
 }

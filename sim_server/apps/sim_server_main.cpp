@@ -10,12 +10,11 @@
 // counted), logging every step to the run file when one is given (--output or the scene's
 // output.file).
 //
-// Exit status: 0 shutdown command or --max-steps reached; 1 bad command line, scene error (e.g.
+// Exit status (common/exit_code.hpp): 0 shutdown command or --max-steps reached; 1 bad command line, scene error (e.g.
 // a mesh without the sets --nodes needs), bus or I/O error; 2 a step failed to converge even
 // after cuts (its state is published with converged = false; the run file keeps the accepted
 // steps); 3 silence with --on-silence stop (lock-step or realtime); 130 SIGINT or SIGTERM (the
 // run file is closed with status "interrupted").
-#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
@@ -23,6 +22,9 @@
 #include <string>
 
 #include "bus/channels.hpp"
+#include "common/exit_code.hpp"
+#include "common/interrupt.hpp"
+#include "common/number_text.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_reader.hpp"
 #include "server/lcm_server_bus.hpp"
@@ -31,13 +33,15 @@
 namespace tongue::apps {
 namespace {
 
-constexpr int kExitError = 1;
+using common::kExitError;
 const std::string kDefaultUrl{bus::kDefaultLcmUrl};
 
-volatile std::sig_atomic_t g_interrupted = 0;
-extern "C" void on_interrupt(int) {
-  g_interrupted = 1;
-}
+// The loop's outcome is the process's exit status: its codes are the common ones.
+static_assert(static_cast<int>(server::ExitStatus::ok) == common::kExitOk);
+static_assert(static_cast<int>(server::ExitStatus::error) == common::kExitError);
+static_assert(static_cast<int>(server::ExitStatus::not_converged) == common::kExitNotConverged);
+static_assert(static_cast<int>(server::ExitStatus::silence) == common::kExitSilence);
+static_assert(static_cast<int>(server::ExitStatus::interrupted) == common::kExitInterrupted);
 
 struct Options {
   std::string scene_path;
@@ -74,23 +78,15 @@ void print_usage(std::FILE* to) {
 }
 
 bool parse_integer(const std::string& text, long long& out) {
-  try {
-    std::size_t used = 0;
-    out = std::stoll(text, &used);
-    return used == text.size();
-  } catch (const std::exception&) {
-    return false;
-  }
+  const std::optional<long long> v = common::parse_integer(text);
+  if (v) out = *v;
+  return v.has_value();
 }
 
 bool parse_number(const std::string& text, double& out) {
-  try {
-    std::size_t used = 0;
-    out = std::stod(text, &used);
-    return used == text.size();
-  } catch (const std::exception&) {
-    return false;
-  }
+  const std::optional<double> v = common::parse_number(text);
+  if (v) out = *v;
+  return v.has_value();
 }
 
 const char* mode_name(server::Mode mode) {
@@ -116,7 +112,7 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
     }
     if (arg == "--help" || arg == "-h") {
       print_usage(stdout);
-      std::exit(0);
+      std::exit(common::kExitOk);
     }
     const bool takes_value = arg == "--mode" || arg == "--lcm-url" || arg == "--prefix" ||
                              arg == "--output" || arg == "--timeout-ms" || arg == "--on-silence" ||
@@ -240,16 +236,6 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
   return o;
 }
 
-void install_signal_handlers() {
-  // No SA_RESTART: a signal ends the bus wait at once, and the loop sees the flag.
-  struct sigaction action {};
-  action.sa_handler = on_interrupt;
-  sigemptyset(&action.sa_mask);
-  action.sa_flags = 0;
-  sigaction(SIGINT, &action, nullptr);
-  sigaction(SIGTERM, &action, nullptr);
-}
-
 int run(int argc, char** argv) {
   std::optional<Options> options = parse_arguments(argc, argv);
   if (!options) {
@@ -261,10 +247,10 @@ int run(int argc, char** argv) {
     const scene::Scene scene = scene::read_scene(options->scene_path);
     scene::BuiltScene built = scene::build_scene(scene);
     options->server.output = options->output ? *options->output : scene.output.file;
-    install_signal_handlers();
+    const common::InterruptHandlers interrupt;
     server::LcmServerBus bus(options->url, channels);
     server::ServerLoop loop(scene, std::move(built), bus, options->server,
-                            [] { return g_interrupted != 0; });
+                            [&interrupt] { return interrupt.raised(); });
     const std::string controllers =
         options->server.controllers == 1
             ? ""

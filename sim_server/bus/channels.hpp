@@ -12,8 +12,17 @@ inline constexpr std::string_view kDefaultChannelPrefix = "TONGUE_";
 // The bus when none is named: multicast on the loopback host only (ttl 0: never leaves it).
 // A 4 MB socket receive buffer (capped by the kernel at net.core.rmem_max) holds a whole model
 // or state message of a refined tongue: fragments beyond the buffer are dropped unseen.
+// The one definition: controllers/lua/step_controller.lua repeats it (Lua cannot include it).
 inline constexpr std::string_view kDefaultLcmUrl =
     "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
+
+// The default bus on another udpm port (a run of its own, e.g. the experiment runner's).
+inline std::string default_lcm_url_on_port(int port) {
+  const std::size_t query = kDefaultLcmUrl.find('?');
+  const std::size_t colon = kDefaultLcmUrl.rfind(':', query);
+  return std::string(kDefaultLcmUrl.substr(0, colon + 1)) + std::to_string(port) +
+         std::string(kDefaultLcmUrl.substr(query));
+}
 
 // True when every character of prefix is in [A-Z0-9_] (the empty prefix is valid).
 inline bool is_valid_channel_prefix(std::string_view prefix) {

@@ -107,10 +107,10 @@ TEST_F(MeshTool, CheckOfRegularMeshExitsZero) {
   EXPECT_TRUE(contains(r.out, "worst element quality (min/max nodal det J): 1 ")) << r.out;
 }
 
-TEST_F(MeshTool, CheckOfFoldedMeshExitsThreeAndListsAnsysIds) {
+TEST_F(MeshTool, CheckOfFoldedMeshExitsOneAndListsAnsysIds) {
   const BoxFiles box = write_box(true);
   const RunResult r = run("check '" + box.nodes + "' '" + box.elements + "' --scale 1e-3");
-  EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;  // irregular: bad input (was 3)
   EXPECT_TRUE(contains(r.out, "irregular elements: 2 of 16")) << r.out;
   EXPECT_TRUE(contains(r.out, "ANSYS ids: 1003 1014")) << r.out;
 }
@@ -164,12 +164,12 @@ TEST_F(MeshTool, RegularizeWritesRegularMeshWithOriginalIds) {
   EXPECT_EQ(again.exit_code, 0) << again.out << again.err;
 }
 
-TEST_F(MeshTool, RegularizeWithTooSmallBoundExitsThree) {
+TEST_F(MeshTool, RegularizeWithTooSmallBoundExitsOne) {
   const BoxFiles box = write_box(true);
   const RunResult r = run("regularize '" + box.nodes + "' '" + box.elements + "' --out-nodes '" +
                           (dir_ / "o.node").string() + "' --out-elements '" +
                           (dir_ / "o.elem").string() + "' --scale 1e-3 --max-displacement-mm 0.05");
-  EXPECT_EQ(r.exit_code, 3) << r.out << r.err;
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;  // irregular: bad input (was 3)
   EXPECT_TRUE(contains(r.out, "largest node displacement: 0.0500 mm")) << r.out;
   EXPECT_TRUE(contains(r.err, "2 elements still irregular (ANSYS ids 1003 1014)")) << r.err;
 }

@@ -1,7 +1,6 @@
 // Runs the real sim_batch executable on small scenes and reads its run file back with the HDF5
 // C API, independently of the writer's code.
 #include <gtest/gtest.h>
-#include <hdf5.h>
 #include <sys/wait.h>
 
 #include <algorithm>
@@ -71,13 +70,13 @@ TEST_F(SimBatch, DynamicSceneWritesARunFileThatMoves) {
   const RunFile f(h5);
   ASSERT_TRUE(f.ok());
   // Frames: t = 0, then steps 3, 6, 9 (every 3) and the last step 10.
-  EXPECT_EQ(f.shape("/time"), (std::vector<hsize_t>{5}));
-  EXPECT_EQ(f.shape("/positions"), (std::vector<hsize_t>{5, 20, 3}));
-  EXPECT_EQ(f.shape("/rest_positions"), (std::vector<hsize_t>{20, 3}));
-  EXPECT_EQ(f.shape("/elements"), (std::vector<hsize_t>{4, 8}));
+  EXPECT_EQ(f.shape("/time"), (std::vector<std::size_t>{5}));
+  EXPECT_EQ(f.shape("/positions"), (std::vector<std::size_t>{5, 20, 3}));
+  EXPECT_EQ(f.shape("/rest_positions"), (std::vector<std::size_t>{20, 3}));
+  EXPECT_EQ(f.shape("/elements"), (std::vector<std::size_t>{4, 8}));
   for (const char* name :
        {"/solver/iterations", "/solver/residual", "/solver/wall_time", "/solver/cuts"})
-    EXPECT_EQ(f.shape(name), (std::vector<hsize_t>{5})) << name;
+    EXPECT_EQ(f.shape(name), (std::vector<std::size_t>{5})) << name;
 
   const std::vector<double> time = f.doubles("/time");
   ASSERT_EQ(time.size(), 5u);
@@ -116,7 +115,7 @@ TEST_F(SimBatch, DynamicSceneWritesARunFileThatMoves) {
 
   // The mesh's sets, and no muscle datasets without muscles.
   EXPECT_EQ(f.ints("/mesh/node_sets/x_min"), (std::vector<int>{0, 5, 10, 15}));
-  EXPECT_EQ(f.shape("/mesh/node_sets/all"), (std::vector<hsize_t>{20}));
+  EXPECT_EQ(f.shape("/mesh/node_sets/all"), (std::vector<std::size_t>{20}));
   EXPECT_EQ(f.ints("/mesh/element_sets/all"), (std::vector<int>{0, 1, 2, 3}));
   EXPECT_FALSE(f.exists("/muscles"));
   EXPECT_FALSE(f.exists("/activations"));
@@ -135,7 +134,7 @@ output: {file: ')" + h5.string() + "'}\n");
   EXPECT_NE(r.out.find("summary:"), std::string::npos) << r.out;
   const RunFile f(h5);
   ASSERT_TRUE(f.ok());
-  EXPECT_EQ(f.shape("/positions"), (std::vector<hsize_t>{3, 20, 3}));
+  EXPECT_EQ(f.shape("/positions"), (std::vector<std::size_t>{3, 20, 3}));
 }
 
 TEST_F(SimBatch, StaticSceneWritesRestAndEachLoadIncrement) {
@@ -152,7 +151,7 @@ analysis: {type: static, load_steps: 2}
   ASSERT_TRUE(f.ok());
   EXPECT_EQ(f.doubles("/time"), (std::vector<double>{0.0, 0.5, 1.0}));
   EXPECT_EQ(f.string_attribute("/", "time_unit"), "1");  // load factor
-  EXPECT_EQ(f.shape("/positions"), (std::vector<hsize_t>{3, 20, 3}));
+  EXPECT_EQ(f.shape("/positions"), (std::vector<std::size_t>{3, 20, 3}));
   const std::vector<double> rest = f.doubles("/rest_positions");
   const std::vector<double> positions = f.doubles("/positions");
   double half = 0.0, full = 0.0;  // largest displacement at load factors 0.5 and 1 [m]
@@ -235,7 +234,7 @@ solver: {max_iterations: 1, residual_rtol: 0, residual_atol: 0, increment_rtol: 
   EXPECT_NE(r.out.find("FAILED"), std::string::npos) << r.out;
   const RunFile f(h5);
   ASSERT_TRUE(f.ok());
-  EXPECT_EQ(f.shape("/positions"), (std::vector<hsize_t>{1, 20, 3}));  // the initial frame
+  EXPECT_EQ(f.shape("/positions"), (std::vector<std::size_t>{1, 20, 3}));  // the initial frame
   EXPECT_EQ(f.string_attribute("/", "status").rfind("failed: ", 0), 0u);
 }
 
@@ -268,12 +267,12 @@ TEST_F(SimBatch, TongueSceneLogsMusclesSetsAndLandmarks) {
 
   const RunFile f(h5);
   ASSERT_TRUE(f.ok());
-  const hsize_t frames = 4, muscles = 19;  // t = 0 (settled) and 3 steps
-  EXPECT_EQ(f.shape("/time"), (std::vector<hsize_t>{frames}));
-  EXPECT_EQ(f.shape("/activations"), (std::vector<hsize_t>{frames, muscles}));
-  EXPECT_EQ(f.shape("/muscles/length"), (std::vector<hsize_t>{frames, muscles}));
-  EXPECT_EQ(f.shape("/muscles/velocity"), (std::vector<hsize_t>{frames, muscles}));
-  EXPECT_EQ(f.shape("/muscles/max_force"), (std::vector<hsize_t>{muscles}));
+  const std::size_t frames = 4, muscles = 19;  // t = 0 (settled) and 3 steps
+  EXPECT_EQ(f.shape("/time"), (std::vector<std::size_t>{frames}));
+  EXPECT_EQ(f.shape("/activations"), (std::vector<std::size_t>{frames, muscles}));
+  EXPECT_EQ(f.shape("/muscles/length"), (std::vector<std::size_t>{frames, muscles}));
+  EXPECT_EQ(f.shape("/muscles/velocity"), (std::vector<std::size_t>{frames, muscles}));
+  EXPECT_EQ(f.shape("/muscles/max_force"), (std::vector<std::size_t>{muscles}));
   EXPECT_EQ(f.string_attribute("/activations", "units"), "1");
   EXPECT_EQ(f.string_attribute("/muscles/length", "units"), "m");
   EXPECT_EQ(f.string_attribute("/muscles/velocity", "units"), "m/s");
@@ -295,8 +294,8 @@ TEST_F(SimBatch, TongueSceneLogsMusclesSetsAndLandmarks) {
   const std::vector<double> act = f.doubles("/activations");
   const std::vector<double> length = f.doubles("/muscles/length");
   ASSERT_EQ(act.size(), frames * muscles);
-  for (hsize_t t = 0; t < frames; ++t) {
-    for (hsize_t m = 0; m < muscles; ++m) {
+  for (std::size_t t = 0; t < frames; ++t) {
+    for (std::size_t m = 0; m < muscles; ++m) {
       const bool sg = static_cast<int>(m) == left || static_cast<int>(m) == right;
       EXPECT_DOUBLE_EQ(act[t * muscles + m], sg && t > 0 ? 0.125 : 0.0) << t << " " << names[m];
       EXPECT_GT(length[t * muscles + m], 0.0) << names[m];
@@ -312,26 +311,26 @@ TEST_F(SimBatch, TongueSceneLogsMusclesSetsAndLandmarks) {
   ASSERT_EQ(offsets.size(), fibre_muscle.size() + 1);
   EXPECT_EQ(offsets.front(), 0);
   EXPECT_EQ(static_cast<std::size_t>(offsets.back()), fibre_nodes.size());
-  for (int m : fibre_muscle) EXPECT_LT(static_cast<hsize_t>(m), muscles);
-  EXPECT_EQ(f.shape("/muscles/fibres/origin"), (std::vector<hsize_t>{fibre_muscle.size(), 3}));
+  for (int m : fibre_muscle) EXPECT_LT(static_cast<std::size_t>(m), muscles);
+  EXPECT_EQ(f.shape("/muscles/fibres/origin"), (std::vector<std::size_t>{fibre_muscle.size(), 3}));
   EXPECT_EQ(f.string_attribute("/", "project_version"), "0.1.0");
   EXPECT_EQ(f.string_attribute("/", "start_time").size(), 20u);  // 2026-11-22T17:40:00Z
 
   // Sets for pictures: the muscle's elements and the landmarks.
   const std::vector<int> sg_elements = f.ints("/mesh/element_sets/SG_left");
   EXPECT_FALSE(sg_elements.empty());
-  const std::vector<hsize_t> elements_shape = f.shape("/elements");
+  const std::vector<std::size_t> elements_shape = f.shape("/elements");
   ASSERT_EQ(elements_shape.size(), 2u);
-  for (int e : sg_elements) EXPECT_LT(static_cast<hsize_t>(e), elements_shape[0]);
+  for (int e : sg_elements) EXPECT_LT(static_cast<std::size_t>(e), elements_shape[0]);
   for (const char* name :
        {"tip", "blade", "palatal_dorsum", "velar_dorsum", "root", "gg_insertion"}) {
-    EXPECT_EQ(f.shape(std::string("/mesh/node_sets/") + name), (std::vector<hsize_t>{1})) << name;
+    EXPECT_EQ(f.shape(std::string("/mesh/node_sets/") + name), (std::vector<std::size_t>{1})) << name;
   }
   EXPECT_FALSE(f.ints("/mesh/node_sets/mandible").empty());
 
   // SG lifts the velar dorsum (Gerard et al. 2003 sec. IV.2).
   const int velar = f.ints("/mesh/node_sets/velar_dorsum").at(0);
-  const std::vector<hsize_t> pshape = f.shape("/positions");
+  const std::vector<std::size_t> pshape = f.shape("/positions");
   ASSERT_EQ(pshape.size(), 3u);
   const std::vector<double> positions = f.doubles("/positions");
   const std::size_t frame_size = pshape[1] * 3;

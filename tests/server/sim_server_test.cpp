@@ -2,7 +2,6 @@
 // scene; the test is the controller: it receives the model and the states, sends activations and
 // commands, and reads the run file back with the HDF5 C API.
 #include <gtest/gtest.h>
-#include <hdf5.h>
 #include <signal.h>
 
 #include <algorithm>

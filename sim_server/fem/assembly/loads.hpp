@@ -17,8 +17,6 @@ class ForceContribution {
   // tangent of the residual's load part, -load_factor * d f_ext / du, over the free dofs.
   virtual void add(const Vector& u, double load_factor, Vector& force,
                    SymmetricMatrix* stiffness) const = 0;
-  // True when f_ext does not depend on u (its tangent is zero).
-  virtual bool is_dead_load() const { return false; }
   // A load that is a multiple of the solid's own energy on some elements (active muscle
   // stiffening) may instead be folded into the solid's assembly as element weights, so that
   // each element is evaluated once: it then adds load_factor times its weight of each element
@@ -40,7 +38,6 @@ class ConstantForce : public ForceContribution {
   void add(const Vector&, double load_factor, Vector& force, SymmetricMatrix*) const override {
     force += load_factor * force_;
   }
-  bool is_dead_load() const override { return true; }
   const Vector& force() const { return force_; }
 
  private:

@@ -27,10 +27,4 @@ AssemblyStatus MechanicalSystem::residual(const Vector& u, double load_factor, V
   return status;
 }
 
-Vector MechanicalSystem::external_force(const Vector& u) const {
-  Vector f_ext = Vector::Zero(solid_->num_dofs());
-  for (const auto& load : loads_) load->add(u, 1.0, f_ext, nullptr);
-  return f_ext;
-}
-
 }  // namespace tongue::fem

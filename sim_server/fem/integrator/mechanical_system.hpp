@@ -26,8 +26,6 @@ class MechanicalSystem {
   // for r.
   AssemblyStatus residual(const Vector& u, double load_factor, Vector& r,
                           SymmetricMatrix* stiffness, double* load_norm = nullptr) const;
-  // f_ext(u) over all dofs.
-  Vector external_force(const Vector& u) const;
 
  private:
   std::shared_ptr<const SolidModel> solid_;

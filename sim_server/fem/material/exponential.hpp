@@ -10,7 +10,6 @@ class Exponential final : public UncoupledMaterial {
  public:
   static constexpr double kDefaultA = 2500.0;  // [Pa]
   static constexpr double kDefaultB = 0.2526;  // [-]
-  static constexpr double kDefaultPoissonRatio = 0.49;
 
   // Default a, b; K from nu = 0.49 and mu0 = 2 a.
   Exponential();

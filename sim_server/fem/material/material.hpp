@@ -68,6 +68,10 @@ class UncoupledMaterial : public Material {
   double bulk_modulus_;
 };
 
+// The small-strain Poisson's ratio of every material whose K is not given: nearly
+// incompressible tissue, the paper's value (Gerard et al. 2003 sec. III.2).
+inline constexpr double kDefaultPoissonRatio = 0.49;
+
 // K from the small-strain shear modulus and Poisson's ratio: K = 2 mu (1 + nu) / (3 (1 - 2 nu)).
 double bulk_modulus_from_poisson(double shear_modulus, double poisson_ratio);
 

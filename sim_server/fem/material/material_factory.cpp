@@ -15,7 +15,6 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
-constexpr double kDefaultPoissonRatio = 0.49;  // the paper's (Gerard et al. 2003 sec. III.2)
 
 // Shortest round-trip text of a double, so messages show exactly what was given.
 std::string format(double v) {

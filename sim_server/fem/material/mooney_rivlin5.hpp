@@ -15,7 +15,6 @@ class MooneyRivlin5 final : public UncoupledMaterial {
     double c11 = -1851.0;
     double c02 = 530.0;
   };
-  static constexpr double kDefaultPoissonRatio = 0.49;
 
   // The paper's law: default coefficients, K from nu = 0.49 and mu0 (K = 244.26 kPa).
   MooneyRivlin5();

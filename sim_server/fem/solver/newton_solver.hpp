@@ -58,7 +58,6 @@ class NewtonSolver {
 
   const NewtonSettings& settings() const { return settings_; }
   NewtonSettings& settings() { return settings_; }
-  const CholmodSolver& linear_solver() const { return linear_solver_; }
 
  private:
   NewtonSettings settings_;

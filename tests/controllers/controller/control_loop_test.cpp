@@ -185,7 +185,7 @@ TEST_F(ControlLoop, ControllerStartedLateJoinsTheRun) {
   EXPECT_EQ(run.doubles("/activations"), expected_levels(kRamp, 5));
 }
 
-// SIGINT and SIGTERM end the controller cleanly (exit 0) with its summary.
+// SIGINT and SIGTERM end the controller cleanly with its summary, exit 130 (interrupted).
 TEST_F(ControlLoop, SignalsEndCleanlyWithASummary) {
   for (const auto& [port, sig, name] : std::vector<std::tuple<int, int, std::string>>{
            {7804, SIGINT, "SIGINT"}, {7805, SIGTERM, "SIGTERM"}}) {
@@ -194,7 +194,7 @@ TEST_F(ControlLoop, SignalsEndCleanlyWithASummary) {
     auto p = player(port, kRamp);
     ASSERT_TRUE(bus.wait_step(20, kExitWaitMs)) << p->stderr_text();
     p->signal(sig);
-    ASSERT_EQ(p->wait_exit(kExitWaitMs), 0) << p->stderr_text();
+    ASSERT_EQ(p->wait_exit(kExitWaitMs), 130) << p->stderr_text();
     const std::string err = p->stderr_text();
     EXPECT_NE(err.find("sequence_player: stopped by " + name + ";"), std::string::npos) << err;
     EXPECT_NE(err.find("activations sent"), std::string::npos) << err;

@@ -82,7 +82,7 @@ class EpClosedLoop : public tongue::testing::TempDirTest {
 
 // Largest node speed [m/s] over the step ending at each frame.
 std::vector<double> peak_node_speeds(const tongue::testing::RunFile& f) {
-  const std::vector<hsize_t> shape = f.shape("/positions");
+  const std::vector<std::size_t> shape = f.shape("/positions");
   const std::size_t frames = shape.at(0), nodes = shape.at(1);
   const std::vector<double> p = f.doubles("/positions");
   std::vector<double> speeds(frames, 0.0);
@@ -114,7 +114,7 @@ TEST_F(EpClosedLoop, ConstantLambdaSettlesToAStaticEquilibrium) {
   const double peak = *std::max_element(speeds.begin(), speeds.end());
   EXPECT_GT(peak, 0.01);  // it did sag: more than 10 mm/s at some point
   EXPECT_LT(speeds.back(), 0.05 * peak);
-  const std::vector<hsize_t> shape = f.shape("/positions");
+  const std::vector<std::size_t> shape = f.shape("/positions");
   const std::size_t nodes = shape.at(1);
   const std::vector<double> p = f.doubles("/positions");
   double sag = 0.0, last = 0.0;  // largest node displacement since the start / over the last 0.1 s

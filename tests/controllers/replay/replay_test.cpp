@@ -77,7 +77,7 @@ class Replay : public tongue::testing::TempDirTest {
     EXPECT_EQ(b.doubles("/positions"), p);  // bit for bit
     EXPECT_EQ(b.doubles("/activations"), a.doubles("/activations"));
     EXPECT_EQ(b.doubles("/time"), a.doubles("/time"));
-    const std::vector<hsize_t> shape = a.shape("/positions");
+    const std::vector<std::size_t> shape = a.shape("/positions");
     const std::size_t frame = shape.at(1) * 3;
     EXPECT_NE(std::vector<double>(p.begin(), p.begin() + frame),
               std::vector<double>(p.end() - frame, p.end()));  // the muscles moved something
