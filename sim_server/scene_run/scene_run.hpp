@@ -67,12 +67,12 @@ class SceneRun {
   int num_muscles() const;
 
   // The last accepted state (before start(): the rest state).
-  std::int64_t step_count() const { return step_; }  // accepted steps since the last restart
-  double time() const { return time_; }              // s
+  std::int64_t step_count() const { return step_; }       // accepted steps since the last restart
+  double time() const { return time_; }                   // s
   const fem::Vector& displacement() const { return u_; }  // m, full vector
   const fem::Vector& velocity() const { return v_; }      // m/s, full vector
   fem::Vector positions() const;                          // m, rest positions + displacement
-  const fem::Vector& levels() const { return levels_; }  // [1], of the last step (0 at step 0)
+  const fem::Vector& levels() const { return levels_; }   // [1], of the last step (0 at step 0)
   const fem::Vector& initial_displacement() const { return initial_u_; }  // m, of step 0
   // The integrator, read-only, for diagnostics that look inside a step (its acceleration, its
   // Newton solver's settings); valid after start().
