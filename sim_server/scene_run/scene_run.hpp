@@ -2,7 +2,7 @@
 // The run of a built dynamic scene: the one place where a dynamic scene is started and stepped,
 // used by sim_batch, the server, the benchmarks and the tests that run scenes.
 //
-// Start-up order (docs/design.md, "Starting a dynamic run"):
+// Start-up order (docs/design.md, "The initial acceleration with the muscles off"):
 //  1. settle(): static equilibrium under the scene's loads with every muscle off, when the scene
 //     asks for it (analysis.settle); the settled state is the initial state of every restart.
 //  2. restart(): a fresh integrator at the initial state, at rest, time 0, step 0, muscles off.
