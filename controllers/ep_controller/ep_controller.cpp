@@ -4,9 +4,9 @@
 #include <cstdio>
 #include <stdexcept>
 
+#include "common/number_text.hpp"
 #include "controller/input_error.hpp"
 #include "controller/muscle_selection.hpp"
-#include "common/number_text.hpp"
 #include "ep_controller/muscle_rho.hpp"
 
 namespace tongue::ep_controller {
@@ -34,10 +34,11 @@ void EpController::start(const controller::Model& model) {
   std::vector<std::pair<std::string, double>> overrides;
   for (const RhoEntry& r : spec_.rho) {
     if (controller::select_muscles(r.name, names_).empty())
-      throw controller::InputError(spec_.source, r.key_path,
-                       "no muscle is named '" + r.name + "' or starts with '" + r.name +
-                           "_' (the server's muscles: " + controller::joined_names(names_) + ")",
-                       r.line);
+      throw controller::InputError(
+          spec_.source, r.key_path,
+          "no muscle is named '" + r.name + "' or starts with '" + r.name +
+              "_' (the server's muscles: " + controller::joined_names(names_) + ")",
+          r.line);
     overrides.emplace_back(r.name, r.rho_n);
   }
   std::vector<double> rho;

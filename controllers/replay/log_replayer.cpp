@@ -4,9 +4,9 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "common/number_text.hpp"
 #include "controller/input_error.hpp"
 #include "controller/muscle_selection.hpp"
-#include "common/number_text.hpp"
 
 namespace tongue::replay {
 namespace {
@@ -26,7 +26,8 @@ void LogReplayer::start(const controller::Model& model) {
   std::sort(served.begin(), served.end());
   if (logged != served)
     fail("/muscles/names", "the log's muscles (" + controller::joined_names(log_.muscle_names) +
-                               ") are not the server's (" + controller::joined_names(model.muscle_names) +
+                               ") are not the server's (" +
+                               controller::joined_names(model.muscle_names) +
                                "): replay into a server running the same scene");
   if (!log_.max_forces_n.empty()) {
     for (std::size_t j = 0; j < log_.muscles(); ++j) {
@@ -35,9 +36,9 @@ void LogReplayer::start(const controller::Model& model) {
       const double served_force =
           model.muscle_max_forces[static_cast<std::size_t>(it - model.muscle_names.begin())];
       if (served_force != log_.max_forces_n[j])
-        fail("/muscles/max_force", log_.muscle_names[j] + " has F_max " +
-                                       common::number_text(log_.max_forces_n[j]) + " N in the log, " +
-                                       common::number_text(served_force) + " N on the server");
+        fail("/muscles/max_force",
+             log_.muscle_names[j] + " has F_max " + common::number_text(log_.max_forces_n[j]) +
+                 " N in the log, " + common::number_text(served_force) + " N on the server");
     }
   }
   if (log_.resets > 0)

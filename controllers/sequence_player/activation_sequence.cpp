@@ -3,15 +3,16 @@
 #include <algorithm>
 #include <cmath>
 
-#include "controller/input_error.hpp"
-#include "controller/muscle_selection.hpp"
 #include "common/number_text.hpp"
 #include "common/yaml_reader.hpp"
+#include "controller/input_error.hpp"
+#include "controller/muscle_selection.hpp"
 
 namespace tongue::sequence_player {
 namespace {
 
-SequenceEntry read_entry(const common::YamlReader& f, const YAML::Node& n, const std::string& path) {
+SequenceEntry read_entry(const common::YamlReader& f, const YAML::Node& n,
+                         const std::string& path) {
   f.expect_map(n, path);
   f.check_keys(n, path,
                {"muscle", "start", "end", "level", "force", "level_from", "level_to", "force_from",
@@ -27,8 +28,8 @@ SequenceEntry read_entry(const common::YamlReader& f, const YAML::Node& n, const
     e.end_s = f.number(n["end"], common::child_path(path, "end"));
     if (!(e.end_s > e.start_s))
       f.fail(common::child_path(path, "end"),
-             "must be after start (" + common::number_text(e.start_s) + " s), got " + common::number_text(e.end_s) +
-                 " s",
+             "must be after start (" + common::number_text(e.start_s) + " s), got " +
+                 common::number_text(e.end_s) + " s",
              n["end"]);
   }
 
@@ -76,7 +77,8 @@ SequenceSpec sequence_from(const common::YamlReader& f) {
   if (const auto d = root["duration"]; common::present(d)) {
     spec.duration_s = f.number(d, "duration");
     if (!(*spec.duration_s > 0.0))
-      f.fail("duration", "must be positive, got " + common::number_text(*spec.duration_s) + " s", d);
+      f.fail("duration", "must be positive, got " + common::number_text(*spec.duration_s) + " s",
+             d);
   }
   for (std::size_t i = 0; i < list.size(); ++i)
     spec.entries.push_back(read_entry(f, list[i], common::index_path("entries", i)));
@@ -107,10 +109,11 @@ ActivationSequence::ActivationSequence(const SequenceSpec& spec,
     Resolved r;
     r.muscles = controller::select_muscles(e.muscle, muscle_names);
     if (r.muscles.empty())
-      throw controller::InputError(spec.source, common::child_path(e.key_path, "muscle"),
-                       "no muscle is named '" + e.muscle + "' or starts with '" + e.muscle +
-                           "_' (the server's muscles: " + controller::joined_names(muscle_names) + ")",
-                       e.line);
+      throw controller::InputError(
+          spec.source, common::child_path(e.key_path, "muscle"),
+          "no muscle is named '" + e.muscle + "' or starts with '" + e.muscle +
+              "_' (the server's muscles: " + controller::joined_names(muscle_names) + ")",
+          e.line);
     r.start_s = e.start_s;
     r.end_s = e.end_s;
     r.ramp = e.ramp;
@@ -124,9 +127,10 @@ ActivationSequence::ActivationSequence(const SequenceSpec& spec,
       // Round-off in a force written as the exact sum must not reject it.
       if (largest > total * (1.0 + 1e-12))
         throw controller::InputError(spec.source, e.key_path,
-                         common::number_text(largest) + " N exceeds the summed F_max of " + e.muscle +
-                             ", " + common::number_text(total) + " N",
-                         e.line);
+                                     common::number_text(largest) +
+                                         " N exceeds the summed F_max of " + e.muscle + ", " +
+                                         common::number_text(total) + " N",
+                                     e.line);
       r.from_level = std::min(1.0, e.from / total);
       r.to_level = std::min(1.0, e.to / total);
     }

@@ -178,7 +178,8 @@ RunFileWriter::RunFileWriter(const std::string& path, const MeshDescription& mes
   std::error_code ec;
   if (!parent.empty()) std::filesystem::create_directories(parent, ec);
   if (ec)
-    throw RunFileError(path, "", "cannot create directory " + parent.string() + ": " + ec.message());
+    throw RunFileError(path, "",
+                       "cannot create directory " + parent.string() + ": " + ec.message());
 
   const QuietErrors quiet;
   const Writer w(path);
@@ -208,8 +209,8 @@ RunFileWriter::RunFileWriter(const std::string& path, const MeshDescription& mes
     const Id mesh_group = w.group(file, L::kMesh);
     const Id node_sets = w.group(file, L::kNodeSets);
     for (const auto& [name, nodes] : mesh.node_sets)
-      w.fixed(file, L::node_set(name), H5T_STD_I32LE, H5T_NATIVE_INT, {nodes.size()},
-              nodes.data(), "1", "0-based node indices of node set " + name);
+      w.fixed(file, L::node_set(name), H5T_STD_I32LE, H5T_NATIVE_INT, {nodes.size()}, nodes.data(),
+              "1", "0-based node indices of node set " + name);
     const Id element_sets = w.group(file, L::kElementSets);
     for (const auto& [name, elements] : mesh.element_sets)
       w.fixed(file, L::element_set(name), H5T_STD_I32LE, H5T_NATIVE_INT, {elements.size()},
@@ -266,8 +267,8 @@ RunFileWriter::RunFileWriter(const std::string& path, const MeshDescription& mes
               "index of the fibre's muscle in /muscles/names");
       w.fixed(file, L::kFibreWeight, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {f}, weights.data(), "1",
               "share of the muscle's tension the fibre carries");
-      w.fixed(file, L::kFibreOrigin, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {f, 3}, origins.data(),
-              "m", "fixed bony attachment before the first node; NaN when the fibre has none");
+      w.fixed(file, L::kFibreOrigin, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {f, 3}, origins.data(), "m",
+              "fixed bony attachment before the first node; NaN when the fibre has none");
       w.fixed(file, L::kFibreNodeOffsets, H5T_STD_I32LE, H5T_NATIVE_INT, {f + 1}, offsets.data(),
               "1", "fibre k's nodes are nodes[node_offsets[k] .. node_offsets[k+1])");
       w.fixed(file, L::kFibreNodes, H5T_STD_I32LE, H5T_NATIVE_INT,
@@ -319,8 +320,7 @@ void RunFileWriter::append(double time, const Eigen::VectorXd& positions,
     throw std::invalid_argument(path_ + ": positions have " + std::to_string(positions.size()) +
                                 " entries, expected 3 x " + std::to_string(num_nodes_));
   if (num_muscles_ > 0) {
-    for (const Eigen::VectorXd* v :
-         {&muscles.activations, &muscles.lengths, &muscles.velocities})
+    for (const Eigen::VectorXd* v : {&muscles.activations, &muscles.lengths, &muscles.velocities})
       if (v->size() != num_muscles_)
         throw std::invalid_argument(path_ + ": a muscle frame has " + std::to_string(v->size()) +
                                     " entries, expected " + std::to_string(num_muscles_));

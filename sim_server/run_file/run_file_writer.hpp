@@ -63,8 +63,8 @@ class RunFileWriter {
   // Creates (or truncates) the file, creating missing parent directories, and writes the
   // mesh with its named sets, the muscles' descriptions and the root attributes.
   // Throws RunFileError (naming the file and the operation) when HDF5 fails.
-  RunFileWriter(const std::string& path, const MeshDescription& mesh,
-                const std::string& scene_text, const RunFileOptions& options = RunFileOptions{},
+  RunFileWriter(const std::string& path, const MeshDescription& mesh, const std::string& scene_text,
+                const RunFileOptions& options = RunFileOptions{},
                 const std::vector<MuscleDescription>& muscles = {});
   ~RunFileWriter();  // flushes and closes; never throws
   RunFileWriter(const RunFileWriter&) = delete;

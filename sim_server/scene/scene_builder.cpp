@@ -8,14 +8,14 @@
 #include <set>
 #include <stdexcept>
 
+#include "common/number_text.hpp"
 #include "fem/assembly/loads.hpp"
 #include "fem/assembly/surface_load.hpp"
 #include "fem/material/material_factory.hpp"
 #include "fem/mesh/ansys_reader.hpp"
 #include "fem/mesh/box_generator.hpp"
-#include "common/number_text.hpp"
-#include "scene/scene_reader.hpp"
 #include "model/default_tongue.hpp"
+#include "scene/scene_reader.hpp"
 
 namespace tongue::scene {
 

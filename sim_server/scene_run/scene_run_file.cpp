@@ -30,8 +30,9 @@ run_file::MeshDescription mesh_description(const fem::Mesh& mesh) {
   return d;
 }
 
-std::unique_ptr<run_file::RunFileWriter> open_scene_run_file(const std::string& path, const scene::Scene& scene,
-                                                 const scene::BuiltScene& built) {
+std::unique_ptr<run_file::RunFileWriter> open_scene_run_file(const std::string& path,
+                                                             const scene::Scene& scene,
+                                                             const scene::BuiltScene& built) {
   const bool dynamic = scene.analysis.type == scene::AnalysisType::dynamic;
   run_file::RunFileOptions options;
   // A static run's frames are load factors, not times. (assign, not = "1": GCC 12 warns
@@ -50,7 +51,7 @@ std::unique_ptr<run_file::RunFileWriter> open_scene_run_file(const std::string& 
     }
   }
   auto log = std::make_unique<run_file::RunFileWriter>(path, mesh_description(built.solid->mesh()),
-                                                      scene.text, options, muscles);
+                                                       scene.text, options, muscles);
   log->set_attribute("analysis", dynamic ? "dynamic" : "static");
   // What frame 0 shows, so that pictures can compare the end with rest under gravity.
   log->set_attribute("initial_state",
@@ -64,7 +65,7 @@ std::unique_ptr<run_file::RunFileWriter> open_scene_run_file(const std::string& 
 }
 
 run_file::MuscleFrame scene_muscle_frame(const scene::BuiltScene& built, const fem::Vector& u,
-                               const fem::Vector* v) {
+                                         const fem::Vector* v) {
   run_file::MuscleFrame frame;
   if (!built.muscles) return frame;
   const model::MuscleForces& m = *built.muscles;

@@ -12,8 +12,8 @@
 #include "bus/activation_validation.hpp"
 #include "fem/integrator/static_solver.hpp"
 #include "fem/mesh/boundary_faces.hpp"
-#include "scene_run/scene_run_file.hpp"
 #include "model/default_tongue.hpp"
+#include "scene_run/scene_run_file.hpp"
 
 namespace tongue::server {
 namespace {
