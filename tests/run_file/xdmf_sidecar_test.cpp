@@ -10,6 +10,7 @@
 
 #include "fem/mesh/box_generator.hpp"
 #include "run_file/run_file_writer.hpp"
+#include "scene_run/scene_run_file.hpp"
 #include "support/run_command.hpp"
 #include "support/temp_dir_test.hpp"
 
@@ -75,7 +76,7 @@ TEST_F(XdmfSidecar, PositionLogWritesAValidSidecarWhenItCloses) {
   const fs::path h5 = dir_ / "sub dir" / "run.h5";
   constexpr int kFrames = 7;
   {
-    RunFileWriter log(h5.string(), mesh, "scene: text");
+    RunFileWriter log(h5.string(), scene_run::mesh_description(mesh), "scene: text");
     fem::Vector x(3 * mesh.num_nodes());
     for (int k = 0; k < kFrames; ++k) {
       for (int i = 0; i < mesh.num_nodes(); ++i)
