@@ -40,9 +40,9 @@ Experiment read_experiment(const fs::path& path) {
   const YamlReader y = YamlReader::load(path.string());
   const YAML::Node& top = y.root();
   y.expect_map(top, "(top level)");
-  y.check_keys(top, "",
-               {"name", "scene", "duration", "bus", "server", "controllers", "lcm_log", "plots",
-                "timeout"});
+  y.check_keys(
+      top, "",
+      {"name", "scene", "duration", "bus", "server", "controllers", "lcm_log", "plots", "timeout"});
 
   e.name = plain_name(y, y.required(top, "", "name"), "name");
   const YAML::Node scene = y.required(top, "", "scene");

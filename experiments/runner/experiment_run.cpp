@@ -18,8 +18,8 @@
 
 #include "bus/channels.hpp"
 #include "bus/messages.hpp"
-#include "common/exit_code.hpp"
 #include "child_process.hpp"
+#include "common/exit_code.hpp"
 #include "project_programs.hpp"
 #include "run_figures.hpp"
 #include "run_folder.hpp"
@@ -341,13 +341,13 @@ RunOutcome run_experiment(const Experiment& e, const RunSettings& settings,
   if (failure.empty() && !figures_error.empty()) failure = "the run file cannot be read";
   s << "\nresult: " << (failure.empty() ? "completed" : "FAILED: " + failure) << "\n";
   outcome.ok = failure.empty();
-  const bool unconverged = watcher.any_unconverged() ||
-                           (server.status && WIFEXITED(*server.status) &&
-                            WEXITSTATUS(*server.status) == common::kExitNotConverged);
-  outcome.exit_code = outcome.ok                  ? common::kExitOk
-                      : interrupt.raised()        ? common::kExitInterrupted
-                      : unconverged               ? common::kExitNotConverged
-                                                  : common::kExitError;
+  const bool unconverged =
+      watcher.any_unconverged() || (server.status && WIFEXITED(*server.status) &&
+                                    WEXITSTATUS(*server.status) == common::kExitNotConverged);
+  outcome.exit_code = outcome.ok           ? common::kExitOk
+                      : interrupt.raised() ? common::kExitInterrupted
+                      : unconverged        ? common::kExitNotConverged
+                                           : common::kExitError;
   outcome.summary = s.str();
   std::ofstream(folder / "summary.txt") << outcome.summary;
   return outcome;

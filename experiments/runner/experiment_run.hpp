@@ -17,7 +17,7 @@ struct RunSettings {
 };
 
 struct RunOutcome {
-  bool ok = false;               // every process did its part and the server completed
+  bool ok = false;  // every process did its part and the server completed
   // The runner's exit status (common/exit_code.hpp): 0 ok; 2 the server published an
   // unconverged step; 130 interrupted; 1 any other failure (a process ended badly, a timeout).
   int exit_code = 1;

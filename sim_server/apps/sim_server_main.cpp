@@ -10,11 +10,11 @@
 // counted), logging every step to the run file when one is given (--output or the scene's
 // output.file).
 //
-// Exit status (common/exit_code.hpp): 0 shutdown command or --max-steps reached; 1 bad command line, scene error (e.g.
-// a mesh without the sets --nodes needs), bus or I/O error; 2 a step failed to converge even
-// after cuts (its state is published with converged = false; the run file keeps the accepted
-// steps); 3 silence with --on-silence stop (lock-step or realtime); 130 SIGINT or SIGTERM (the
-// run file is closed with status "interrupted").
+// Exit status (common/exit_code.hpp): 0 shutdown command or --max-steps reached; 1 bad command
+// line, scene error (e.g. a mesh without the sets --nodes needs), bus or I/O error; 2 a step failed
+// to converge even after cuts (its state is published with converged = false; the run file keeps
+// the accepted steps); 3 silence with --on-silence stop (lock-step or realtime); 130 SIGINT or
+// SIGTERM (the run file is closed with status "interrupted").
 #include <cstdio>
 #include <cstdlib>
 #include <exception>

@@ -3,8 +3,8 @@
 namespace tongue::common {
 namespace {
 
-std::string message(const std::string& file, const std::string& key_path,
-                    const std::string& reason, int line) {
+std::string message(const std::string& file, const std::string& key_path, const std::string& reason,
+                    int line) {
   std::string s = file + ": " + (key_path.empty() ? "" : key_path + ": ") + reason;
   if (line > 0) s += " (line " + std::to_string(line) + ")";
   return s;

@@ -72,8 +72,7 @@ void YamlReader::check_keys(const YAML::Node& n, const std::string& path,
     if (!it->first.IsScalar()) fail(path, "keys must be plain names", it->first);
     const std::string key = it->first.Scalar();
     if (std::find(allowed.begin(), allowed.end(), key) == allowed.end())
-      fail(child_path(path, key), "unknown " + noun + " (known: " + join(allowed) + ")",
-           it->first);
+      fail(child_path(path, key), "unknown " + noun + " (known: " + join(allowed) + ")", it->first);
     if (!seen.insert(key).second) fail(child_path(path, key), noun + " given twice", it->first);
   }
 }

@@ -72,8 +72,8 @@ ActivationSchedule::ActivationSchedule(const Scene& scene,
       if (!(total > 0.0)) fail("force", "the muscles have no max_force to share the force");
       // Round-off in a force written as the exact sum must not reject it.
       if (force > total * (1.0 + 1e-12))
-        fail("force",
-             common::number_text(force) + " N exceeds the muscles' summed max_force, " + common::number_text(total) + " N");
+        fail("force", common::number_text(force) + " N exceeds the muscles' summed max_force, " +
+                          common::number_text(total) + " N");
       step.level = std::min(1.0, force / total);
     }
     step.start = spec.start;

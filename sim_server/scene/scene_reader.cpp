@@ -26,7 +26,6 @@ using common::join;
 using common::number_text;
 using common::present;
 
-
 const char* const kComponentNames[3] = {"x", "y", "z"};
 
 // The node sets every box mesh has (fem/mesh/box_generator.hpp, plus "all" from its element set).
@@ -209,7 +208,8 @@ class Parser : private common::YamlReader {
     box.size = vec3(size, size_path);
     for (int i = 0; i < 3; ++i)
       if (!(box.size[i] > 0.0))
-        fail(index_path(size_path, i), "must be positive, got " + number_text(box.size[i]) + " m", size);
+        fail(index_path(size_path, i), "must be positive, got " + number_text(box.size[i]) + " m",
+             size);
     const std::string div_path = child_path(path, "divisions");
     const YAML::Node div = required(n, path, "divisions");
     if (!div.IsSequence() || div.size() != 3) fail(div_path, "expected a list of 3 integers", div);
@@ -530,7 +530,8 @@ class Parser : private common::YamlReader {
         const std::string l_path = child_path(a_path, "level");
         const double v = number(level, l_path);
         if (v < 0.0 || v > 1.0)
-          fail(l_path, "must lie in [0, 1] (a fraction of max_force), got " + number_text(v), level);
+          fail(l_path, "must lie in [0, 1] (a fraction of max_force), got " + number_text(v),
+               level);
         spec.level = v;
       } else {
         spec.force = non_negative(force, child_path(a_path, "force"), "N");
@@ -542,7 +543,8 @@ class Parser : private common::YamlReader {
         const double end = number(e, e_path);
         if (!(end > spec.start))
           fail(e_path,
-               "must be later than start (" + number_text(spec.start) + " s), got " + number_text(end) + " s",
+               "must be later than start (" + number_text(spec.start) + " s), got " +
+                   number_text(end) + " s",
                e);
         spec.end = end;
       }
@@ -575,7 +577,8 @@ class Parser : private common::YamlReader {
       // A step longer than the run is almost surely a unit slip (ms for s).
       if (present(duration) && a.dt > a.duration * (1.0 + 1e-12))
         fail(child_path(path, "dt"),
-             number_text(a.dt) + " s is longer than the duration " + number_text(a.duration) + " s", dt);
+             number_text(a.dt) + " s is longer than the duration " + number_text(a.duration) + " s",
+             dt);
     }
     if (const auto s = n["load_steps"]; present(s))
       a.load_steps = at_least(s, child_path(path, "load_steps"), 1);
@@ -589,8 +592,8 @@ class Parser : private common::YamlReader {
         a.newmark.gamma = number(g, child_path(nm_path, "gamma"));
         // gamma < 1/2 adds negative numerical damping: the scheme grows without bound.
         if (a.newmark.gamma < 0.5)
-          fail(child_path(nm_path, "gamma"), "must be at least 0.5, got " + number_text(a.newmark.gamma),
-               g);
+          fail(child_path(nm_path, "gamma"),
+               "must be at least 0.5, got " + number_text(a.newmark.gamma), g);
       }
     }
     if (const auto l = n["lumped_mass"]; present(l))
