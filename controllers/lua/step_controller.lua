@@ -25,14 +25,14 @@ Where several entries name one muscle, the last whose window holds sets its leve
 --lcm-url URL    LCM provider (default udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304)
 --prefix P       channel prefix of the server (default TONGUE_)
 --max-steps N    stop after answering state N - 1 and seeing state N
---timeout-ms MS  give up (exit 1) when nothing comes from the server for MS ms (default 10000)
+--timeout-ms MS  give up (exit 4) when nothing comes from the server for MS ms (default 10000)
 
 Start it before the server (it answers states from step 0 on; a server already waiting for a
 step it never saw is not answered). Several instances may drive one server started with
 --controllers N, each naming its own muscles.
 
-Exit status: 0 state N reached; 1 the server fell silent, a muscle is not in the model, a step
-failed to converge, or LCM failed; 2 bad command line.
+Exit status: 0 state N reached; 1 a muscle is not in the model or LCM failed; 2 a step failed
+to converge, or a bad command line; 4 the server fell silent.
 Run it with the generated bindings on the Lua path: the build's wrapper
 build/controllers/lua/step_controller does that.
 ]==]
@@ -43,6 +43,10 @@ local tongue_lcm = require("tongue_lcm")
 local PROG = "step_controller"
 -- The same as kDefaultLcmUrl in sim_server/bus/channels.hpp (the C++ definition): keep them equal.
 local DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
+-- The exit codes of sim_server/common/exit_code.hpp (docs/exit_codes.md); a bad command line
+-- is 2 here, not 1 (its tests pin that).
+local EXIT_NOT_CONVERGED = 2
+local EXIT_TIMEOUT = 4
 local SLICE_MS = 50             -- longest single wait on the bus
 local DESCRIBE_AFTER_MS = 250   -- ask for the model when it has not come by then
 
@@ -193,8 +197,9 @@ local function main(args)
         silent_ms = silent_ms + SLICE_MS
         if on_silence then on_silence(silent_ms) end
         if silent_ms >= options.timeout_ms then
-          fail(1, string.format("nothing from the server on %s* for %d ms while waiting for %s",
-                                options.prefix, options.timeout_ms, what))
+          fail(EXIT_TIMEOUT,
+               string.format("nothing from the server on %s* for %d ms while waiting for %s",
+                             options.prefix, options.timeout_ms, what))
         end
       end
     end
@@ -227,8 +232,8 @@ local function main(args)
     local state = table.remove(states, 1)
     last_step, last_time = state.step, state.time
     if not state.converged then
-      fail(1, string.format("the server reports step %d did not converge: %s", state.step + 1,
-                            state.status))
+      fail(EXIT_NOT_CONVERGED, string.format("the server reports step %d did not converge: %s",
+                                             state.step + 1, state.status))
     end
     if options.max_steps and state.step >= options.max_steps then break end
     -- "paused" states repeat a state already answered; "ok" ones are new (or a reset's step 0).
