@@ -35,7 +35,7 @@ std::string xml_escape(const std::string& s) {
   return out;
 }
 
-// Shortest text that reads back as the same double.
+// 17 significant digits: the text reads back as the same double.
 std::string exact(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.17g", v);

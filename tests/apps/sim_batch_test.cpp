@@ -1,5 +1,6 @@
-// Runs the real sim_batch executable on small scenes and reads its run file back with the HDF5
-// C API, independently of the writer's code.
+// Runs the real sim_batch executable on small scenes and reads its run file back with run_file's
+// reader, the dataset names spelled out here rather than taken from the layout header, so that a
+// renamed dataset fails.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 

@@ -2,8 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 #include <string>
+
+#ifndef TONGUE_SOURCE_DIR
+#error "TONGUE_SOURCE_DIR must name the source tree"
+#endif
 
 namespace tongue::bus {
 namespace {
@@ -45,6 +51,20 @@ TEST(Channels, PrefixValidation) {
   EXPECT_TRUE(is_valid_channel_prefix(""));
   EXPECT_FALSE(is_valid_channel_prefix("a"));
   EXPECT_FALSE(is_valid_channel_prefix("A/B"));
+}
+
+TEST(Channels, DefaultUrlOnAnotherPortKeepsItsOptions) {
+  EXPECT_EQ(default_lcm_url_on_port(7801), "udpm://239.255.76.67:7801?ttl=0&recv_buf_size=4194304");
+}
+
+// The Lua controller cannot include channels.hpp and repeats the default URL: the two agree.
+TEST(Channels, LuaControllerHasTheSameDefaultUrl) {
+  std::ifstream in(std::string(TONGUE_SOURCE_DIR) + "/controllers/lua/step_controller.lua");
+  ASSERT_TRUE(in);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string line = "local DEFAULT_URL = \"" + std::string(kDefaultLcmUrl) + "\"";
+  EXPECT_NE(text.str().find(line), std::string::npos) << "not in step_controller.lua: " << line;
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 // Runs the real sim_server executable on a real LCM bus (udpm on the loopback) with a small box
 // scene; the test is the controller: it receives the model and the states, sends activations and
-// commands, and reads the run file back with the HDF5 C API.
+// commands, and reads the run file back with run_file's reader.
 #include <gtest/gtest.h>
 #include <signal.h>
 
