@@ -7,38 +7,31 @@
 // Exit status: 0 sent; 1 bad command line or the bus could not be opened or written.
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <string>
-#include <string_view>
 
 #include <lcm/lcm-cpp.hpp>
 
 #include "bus/channels.hpp"
+#include "bus/command.hpp"
 #include "bus/messages.hpp"
 
 namespace {
 
-constexpr std::string_view kCommands[] = {"reset", "pause", "resume", "shutdown", "describe"};
-
 void print_usage(std::FILE* to) {
   std::fprintf(to,
-               "usage: sim_command reset|pause|resume|shutdown|describe [--lcm-url URL]\n"
+               "usage: sim_command %s [--lcm-url URL]\n"
                "                   [--prefix TONGUE_]\n"
                "  --lcm-url  LCM provider URL (default %s)\n"
                "  --prefix   channel prefix of the server, A-Z 0-9 _ (default TONGUE_)\n",
+               tongue::bus::command_names("|").c_str(),
                std::string(tongue::bus::kDefaultLcmUrl).c_str());
-}
-
-bool is_command(std::string_view word) {
-  for (const std::string_view c : kCommands) {
-    if (c == word) return true;
-  }
-  return false;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string command;
+  std::optional<tongue::bus::Command> command;
   std::string url(tongue::bus::kDefaultLcmUrl);
   std::string prefix(tongue::bus::kDefaultChannelPrefix);
   for (int i = 1; i < argc; ++i) {
@@ -53,15 +46,15 @@ int main(int argc, char** argv) {
         return 1;
       }
       (arg == "--lcm-url" ? url : prefix) = argv[++i];
-    } else if (!command.empty() || !is_command(arg)) {
+    } else if (command || !tongue::bus::parse_command(arg)) {
       std::fprintf(stderr, "sim_command: unexpected argument '%s'\n", arg.c_str());
       print_usage(stderr);
       return 1;
     } else {
-      command = arg;
+      command = tongue::bus::parse_command(arg);
     }
   }
-  if (command.empty()) {
+  if (!command) {
     print_usage(stderr);
     return 1;
   }
@@ -72,11 +65,10 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "sim_command: cannot open the LCM bus '%s'\n", url.c_str());
       return 1;
     }
-    tongue_lcm::lcmt_tongue_command message;
-    message.utime = std::chrono::duration_cast<std::chrono::microseconds>(
-                        std::chrono::system_clock::now().time_since_epoch())
-                        .count();
-    message.command = command;
+    const tongue_lcm::lcmt_tongue_command message = tongue::bus::command_message(
+        *command, std::chrono::duration_cast<std::chrono::microseconds>(
+                      std::chrono::system_clock::now().time_since_epoch())
+                      .count());
     if (lcm.publish(channels.command, &message) != 0) {
       std::fprintf(stderr, "sim_command: could not publish on %s\n", channels.command.c_str());
       return 1;

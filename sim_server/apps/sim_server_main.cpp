@@ -23,9 +23,9 @@
 #include <string>
 
 #include "bus/channels.hpp"
+#include "bus/lcm_server_bus.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_reader.hpp"
-#include "server/lcm_server_bus.hpp"
 #include "server/server_loop.hpp"
 
 namespace tongue::apps {
@@ -262,7 +262,7 @@ int run(int argc, char** argv) {
     scene::BuiltScene built = scene::build_scene(scene);
     options->server.output = options->output ? *options->output : scene.output.file;
     install_signal_handlers();
-    server::LcmServerBus bus(options->url, channels);
+    bus::LcmServerBus bus(options->url, channels);
     server::ServerLoop loop(scene, std::move(built), bus, options->server,
                             [] { return g_interrupted != 0; });
     const std::string controllers =
