@@ -1,7 +1,7 @@
 #pragma once
-// Runs a dynamic scene as sim_batch does (settled under its loads with every muscle off, then
-// steps of dt with the activations at each step's end time), without a run file, and times the
-// stepping alone: the settling is a one-off start-up, not part of the real-time budget.
+// Runs a dynamic scene through its SceneRun as sim_batch does (steps of dt with the schedule's
+// activations at each step's end time), without a run file, and times the stepping alone: the
+// settling is a one-off start-up, not part of the real-time budget.
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -9,9 +9,8 @@
 #include <stdexcept>
 #include <string>
 
-#include "fem/integrator/newmark_integrator.hpp"
-#include "fem/integrator/static_solver.hpp"
 #include "scene/scene_builder.hpp"
+#include "scene_run/scene_run.hpp"
 
 namespace tongue::benchmarks {
 
@@ -34,50 +33,42 @@ inline double process_cpu_seconds() {
 inline DynamicRun run_dynamic_scene(
     const scene::Scene& scene,
     const std::function<void(double, const fem::Vector&)>& on_state = {}) {
-  scene::BuiltScene built = scene::build_scene(scene);
-  const int n = built.solid->num_dofs();
-  fem::Vector u = fem::Vector::Zero(n);
-  if (scene.analysis.settle) {
-    const fem::StaticReport settled = fem::solve_static(*built.system, u, built.static_settings);
-    if (!settled.converged) throw std::runtime_error("settling failed: " + settled.message);
-  }
-  if (built.muscles)
-    built.muscles->set_activations(fem::Vector::Zero(built.muscles->num_muscles()));
-  fem::NewmarkIntegrator integrator(*built.system, built.dynamic_settings);
-  integrator.initialize(u, fem::Vector::Zero(n), 0.0);
-  const fem::Vector& rest = built.solid->rest_positions();
-  if (on_state) on_state(0.0, rest + integrator.displacement());
+  scene_run::SceneRun run(scene, scene::build_scene(scene));
+  const fem::StaticReport settled = run.start();
+  if (!settled.converged) throw std::runtime_error("settling failed: " + settled.message);
+  if (on_state) on_state(0.0, run.positions());
 
-  DynamicRun run;
+  DynamicRun figures;
+  const scene::BuiltScene& built = run.built();
   const int count = scene::time_step_count(scene.analysis);
   const auto wall_start = std::chrono::steady_clock::now();
   const double cpu_start = process_cpu_seconds();
   for (int s = 0; s < count; ++s) {
     const double dt = scene::time_step_length(scene.analysis, s);
-    if (built.muscles)
-      built.muscles->set_activations(built.activations.levels_at(integrator.time() + dt));
-    const fem::StepReport r = integrator.step(dt);
+    const fem::Vector levels =
+        built.muscles ? built.activations.levels_at(run.time() + dt) : fem::Vector();
+    const fem::StepReport r = run.step(dt, levels).report;
     if (!r.converged)
       throw std::runtime_error("step " + std::to_string(s + 1) + " failed: " + r.message);
-    ++run.steps;
-    run.iterations += r.iterations;
-    run.factorizations += r.factorizations;
-    run.residual_evaluations += r.residual_evaluations;
+    ++figures.steps;
+    figures.iterations += r.iterations;
+    figures.factorizations += r.factorizations;
+    figures.residual_evaluations += r.residual_evaluations;
     if (on_state) {
       // Observers are not part of the simulation's cost.
       const auto pause = std::chrono::steady_clock::now();
       const double cpu_pause = process_cpu_seconds();
-      on_state(integrator.time(), rest + integrator.displacement());
-      run.wall_seconds -=
+      on_state(run.time(), run.positions());
+      figures.wall_seconds -=
           std::chrono::duration<double>(std::chrono::steady_clock::now() - pause).count();
-      run.cpu_seconds -= process_cpu_seconds() - cpu_pause;
+      figures.cpu_seconds -= process_cpu_seconds() - cpu_pause;
     }
   }
-  run.wall_seconds +=
+  figures.wall_seconds +=
       std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
-  run.cpu_seconds += process_cpu_seconds() - cpu_start;
-  run.simulated_seconds = integrator.time();
-  return run;
+  figures.cpu_seconds += process_cpu_seconds() - cpu_start;
+  figures.simulated_seconds = run.time();
+  return figures;
 }
 
 }  // namespace tongue::benchmarks

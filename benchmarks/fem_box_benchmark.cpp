@@ -1,4 +1,4 @@
-// Cost of the FEM core on a tongue-sized box and its x2 refinement (DESIGN.md sec. 5): the sparse
+// Cost of the FEM core on a tongue-sized box and its x2 refinement (docs/speed.md): the sparse
 // factorization's size and flops, the time of each part of a Newton iteration, and the real-time
 // factor of a short Newmark run with full Newton and with a reused factorization.
 //
@@ -8,7 +8,7 @@
 //
 // Usage: fem_box_benchmark [--steps N] [--reps N] [--coarse-only | --refine-only]
 // (defaults: 20 steps on each mesh, 5 repetitions of each timing, 3 on the fine mesh).
-// The solver runs OpenBLAS on one thread, the setting the DESIGN.md figures were measured with.
+// The solver runs OpenBLAS on one thread, the setting of the figures in docs/speed.md.
 #include <algorithm>
 #include <chrono>
 #include <cstdio>

@@ -1,4 +1,4 @@
-// Speed against error on the default tongue (issue 6; DESIGN.md sec. 5): the real-time factor of
+// Speed against error on the default tongue (docs/speed.md): the real-time factor of
 // a grid of solver settings and their nodal error against a reference run of the same scene.
 //
 // Scene (default scenes/tongue_sg_3n_relax.yaml): SG 3 N for 120 ms, then 200 ms of relaxation.

@@ -1,4 +1,4 @@
-// Cost of the built-in tongue against its element count (issue 6): the parts of one Newton
+// Cost of the built-in tongue against its element count (docs/speed.md): the parts of one Newton
 // iteration and the cost of a dynamic step at refinement 1, 2 (and 3 with --max-refinement 3),
 // with the exponent p of a least-squares fit cost ~ elements^p.
 //
@@ -21,10 +21,10 @@
 #include <vector>
 
 #include "fem/integrator/newmark_integrator.hpp"
-#include "fem/integrator/static_solver.hpp"
 #include "fem/solver/cholmod_solver.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_reader.hpp"
+#include "scene_run/scene_run.hpp"
 
 namespace {
 
@@ -69,7 +69,8 @@ Row measure(const scene::Scene& base, int refinement, int steps, int reps, int t
   s.mesh = scene::TongueMeshSpec{refinement};
   s.threads = threads;
   s.output.file.clear();
-  scene::BuiltScene built = scene::build_scene(s);
+  scene_run::SceneRun run(s, scene::build_scene(s));
+  const scene::BuiltScene& built = run.built();
   const fem::SolidModel& solid = *built.solid;
   Row row;
   row.refinement = refinement;
@@ -77,11 +78,12 @@ Row measure(const scene::Scene& base, int refinement, int steps, int reps, int t
   row.elements = solid.mesh().num_elements();
   row.free_dofs = solid.dofs().num_free();
 
-  fem::Vector u = fem::Vector::Zero(solid.num_dofs());
-  const fem::StaticReport settled = fem::solve_static(*built.system, u, built.static_settings);
+  const fem::StaticReport settled = run.start();
   if (!settled.converged) throw std::runtime_error("settling failed: " + settled.message);
+  const fem::Vector u = run.displacement();
 
-  // The parts of an iteration at the settled state.
+  // The parts of an iteration at the settled state (the muscles set directly: these time the
+  // model's parts, not a run).
   fem::Vector r;
   fem::SymmetricMatrix K(solid.pattern());
   row.residual = median_seconds(reps, [&] { built.system->residual(u, 1.0, r, nullptr); });
@@ -123,18 +125,17 @@ Row measure(const scene::Scene& base, int refinement, int steps, int reps, int t
   // Dynamic steps: SG 3 N from the settled state, then at rest (activations off, after the
   // relaxation has settled is not needed: a fresh integrator at the settled state is at rest).
   auto run_steps = [&](bool active, int count, double& iterations, double& factorizations) {
-    built.muscles->set_activations(fem::Vector::Zero(built.muscles->num_muscles()));
-    fem::NewmarkIntegrator integrator(*built.system, built.dynamic_settings);
-    integrator.initialize(u, fem::Vector::Zero(u.size()));
-    if (active) built.muscles->set_activations(built.activations.levels_at(s.analysis.dt));
+    run.restart();
+    const fem::Vector off = fem::Vector::Zero(run.num_muscles());
+    const fem::Vector levels = active ? built.activations.levels_at(s.analysis.dt) : off;
     // The first steps at rest iterate once to move from the settling's tolerance to the
     // dynamic one: not counted.
     if (!active)
-      for (int k = 0; k < 3; ++k) integrator.step(s.analysis.dt);
+      for (int k = 0; k < 3; ++k) run.step(s.analysis.dt, off);
     int its = 0, facts = 0;
     const double start = now_seconds();
     for (int k = 0; k < count; ++k) {
-      const fem::StepReport rep = integrator.step(s.analysis.dt);
+      const fem::StepReport rep = run.step(s.analysis.dt, levels).report;
       if (!rep.converged) throw std::runtime_error("step failed: " + rep.message);
       its += rep.iterations;
       facts += rep.factorizations;

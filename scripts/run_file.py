@@ -1,7 +1,7 @@
 """Reading a run file (the HDF5 log of sim_batch and sim_server) and the geometry of its mesh, for
 the scripts that draw runs: draw_midsagittal.py and plot_run.py.
 
-Run file (HDF5, SI units; the full layout is in sim_server/run_file/run_file_writer.hpp):
+Run file (HDF5, SI units; the full layout is in docs/run_file.md):
 /rest_positions [N x 3] (m), /elements [E x 8] (hex8, bottom face counter-clockwise then top
 face), /time [T] (s), /positions [T x N x 3] (m); optional /mesh/node_sets/*,
 /mesh/element_sets/*, /muscles/names, /muscles/max_force [M] (N), /activations [T x M].

@@ -28,7 +28,7 @@
 namespace tongue::ep_controller {
 
 struct EpSettings {
-  double delay_s = 0.012;  // reflex delay d [s] (DESIGN.md sec. 4: 10-20 ms)
+  double delay_s = 0.012;  // reflex delay d [s] (docs/controllers.md)
   bool velocity_factor = true;
   double force_lag_s = 0.1;  // time constant of force development [s]; 0: none
   LambdaConstants constants;

@@ -6,7 +6,7 @@
 //   tau dy/dt = u - y,   discretized exactly for u held over n steps of dt:
 //   y_(k+n) = y_k + (1 - exp(-n dt / tau)) (u - y_k)
 //
-// Not part of the lambda model of DESIGN.md sec. 4; the controller adds it (tau 100 ms by
+// Not part of the lambda model (lambda_model.hpp); the controller adds it (tau 100 ms by
 // default, 0 turns it off) because on the 3D tongue the bare law, whose gain dM/dA =
 // rho c exp(c A) grows with the stretch, is unstable with any reflex delay: at the /ai/ commands
 // its levels jump between 0 and 1 at about 36 Hz (with a delay of 4 or 12 ms alike). With the lag

@@ -1,6 +1,6 @@
 #pragma once
 // Feldman's lambda model of muscle force (the equilibrium-point hypothesis), as Payan & Perrier
-// (1997) used it for the tongue, with the constants of the SPEECHart code (DESIGN.md sec. 4).
+// (1997) used it for the tongue, with the constants of the SPEECHart code (docs/controllers.md).
 // For one muscle of length l and lengthening velocity l' seen through the reflex delay d:
 //
 //   A = [l(t - d) - lambda(t) + mu l'(t - d)]^+          lengths in mm, mu = 0.01 s
@@ -19,7 +19,7 @@ namespace tongue::ep_controller {
 struct LambdaConstants {
   double c_per_mm = 0.112;  // 1/mm, steepness of the exponential force law
   double mu_s = 0.01;       // s, weight of the velocity in the threshold comparison
-  // Velocity factor constants (DESIGN.md sec. 4); l'/l0 in 1/s.
+  // Velocity factor constants (docs/controllers.md); l'/l0 in 1/s.
   double f1 = 0.80;
   double f2 = 0.5;
   double f3 = 0.43;

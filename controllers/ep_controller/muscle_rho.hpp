@@ -12,11 +12,11 @@
 namespace tongue::ep_controller {
 
 // rho of a group of the built-in tongue [N], nullopt for other names. Payan & Perrier 1997 /
-// SPEECHart (DESIGN.md sec. 4: fibre cross-section x 0.22 N/mm^2): GG 5.2 (for each of GGp, GGm
-// and GGa), HG 21.7, SG 4.4, V 2.4, SL 14.3, IL 19.4. T and MH have no published value; ours
-// (T 15.6, MH 12.1) are their F_max times the median rho / F_max of the eight muscles that have
-// one (0.311; the ratios range 0.12 (V) to 2.16 (IL)), so neither is an outlier in how soon it
-// reaches its cap.
+// SPEECHart (fibre cross-section x 0.22 N/mm^2; docs/controllers.md): GG 5.2 (for each of
+// GGp, GGm and GGa), HG 21.7, SG 4.4, V 2.4, SL 14.3, IL 19.4. T and MH have no published
+// value; ours (T 15.6, MH 12.1) are their F_max times the median rho / F_max of the eight muscles
+// that have one (0.311; the ratios range 0.12 (V) to 2.16 (IL)), so neither is an outlier in how
+// soon it reaches its cap.
 std::optional<double> default_group_rho(const std::string& group);
 
 // rho [N] of each muscle (muscle_names, max_forces_n in the model's order). overrides maps muscle

@@ -79,7 +79,7 @@ SequenceSpec sequence_from(const controller::YamlFile& f) {
       f.fail("duration", "must be positive, got " + controller::number_text(*spec.duration_s) + " s", d);
   }
   for (std::size_t i = 0; i < list.size(); ++i)
-    spec.entries.push_back(read_entry(f, list[i], index_path("entries", i)));
+    spec.entries.push_back(read_entry(f, list[i], controller::index_path("entries", i)));
   return spec;
 }
 

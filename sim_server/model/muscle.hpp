@@ -1,7 +1,7 @@
 #pragma once
-// A muscle as plain data (DESIGN.md sec. 2, after Payan & Perrier 1997): a set of elements plus
-// fibres, each fibre an ordered polyline of mesh nodes that may start at a fixed bony attachment.
-// The forces the fibres exert are in muscle_forces.hpp.
+// A muscle as plain data (Gerard et al. 2003 sec. III.3.2, after Payan & Perrier 1997): a set
+// of elements plus fibres, each fibre an ordered polyline of mesh nodes that may start at a fixed
+// bony attachment. The forces the fibres exert are in muscle_forces.hpp.
 #include <optional>
 #include <string>
 #include <utility>

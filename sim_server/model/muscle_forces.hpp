@@ -1,5 +1,5 @@
 #pragma once
-// Muscle fibre forces (Payan & Perrier 1997; Gerard et al. 2003 sec. III.3.2; DESIGN.md sec. 2),
+// Muscle fibre forces (Payan & Perrier 1997; Gerard et al. 2003 sec. III.3.2; docs/physics.md),
 // with an active force-length relation f per fibre segment (force_length.hpp). A fibre of
 // tension T = activation * F_max * weight is a chain of segments; the segment of length l (rest
 // length l_r, unit vector e from its first point to its second) carries the tension

@@ -1,6 +1,6 @@
 #pragma once
 // The default tongue's shape: a fan-shaped structured hexahedral grid around the genioglossus
-// insertion on the mandible (DESIGN.md sec. 3). Grid directions:
+// insertion on the mandible (Gerard et al. 2003 sec. II.2; docs/physics.md). Grid directions:
 //   i: angle around the insertion, from the tip (front, up) over the dorsum to the root (back,
 //   down); j: radius, from a small arc around the insertion out to the dorsum surface; k: lateral,
 //   from the right side (z < 0) through the midsagittal plane to the left (z > 0).

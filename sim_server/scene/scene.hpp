@@ -131,7 +131,7 @@ using MeshSpec = std::variant<BoxMeshSpec, AnsysMeshSpec, TongueMeshSpec>;
 struct MaterialSpec {
   std::string type;
   std::map<std::string, double> parameters;  // as given; the factory fills in its defaults
-  double density = 1000.0;                   // kg/m^3 (DESIGN.md sec. 2: 1 g/cm^3)
+  double density = 1000.0;                   // kg/m^3 (Gerard et al. 2003 sec. IV.1: 1 g/cm^3)
   // Resolved by the reader: mean_dilatation for split materials unless the scene says otherwise.
   fem::Formulation formulation = fem::Formulation::mean_dilatation;
 };

@@ -74,6 +74,9 @@ class SceneRun {
   fem::Vector positions() const;                          // m, rest positions + displacement
   const fem::Vector& levels() const { return levels_; }  // [1], of the last step (0 at step 0)
   const fem::Vector& initial_displacement() const { return initial_u_; }  // m, of step 0
+  // The integrator, read-only, for diagnostics that look inside a step (its acceleration, its
+  // Newton solver's settings); valid after start().
+  const fem::NewmarkIntegrator& integrator() const { return *integrator_; }
   // The muscles' frame at the current state (what step() returns; at step 0: all activations 0).
   run_file::MuscleFrame muscle_frame() const;
 

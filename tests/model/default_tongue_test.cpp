@@ -1,4 +1,4 @@
-// The built-in tongue against DESIGN.md sec. 3: size, mass, symmetry, element regularity,
+// The built-in tongue against docs/physics.md: size, mass, symmetry, element regularity,
 // landmarks and boundary conditions, at the default resolution and refined.
 #include <gtest/gtest.h>
 

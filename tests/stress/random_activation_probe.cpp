@@ -19,10 +19,10 @@
 #include <vector>
 
 #include "fem/integrator/newmark_integrator.hpp"
-#include "fem/integrator/static_solver.hpp"
 #include "random_activation_sequence.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_reader.hpp"
+#include "scene_run/scene_run.hpp"
 #include "stress_support.hpp"
 
 namespace tongue::stress {
@@ -107,7 +107,7 @@ Vec3 segment_vector(const Segment& s, const Vector& x) {
 
 // The probe's view of the model: muscles, segments, elements.
 struct Probe {
-  scene::BuiltScene built;
+  const scene::BuiltScene& built;
   std::vector<Segment> segments;
   std::vector<double> rest;
   std::vector<int> elements;
@@ -256,22 +256,21 @@ int run(const Options& o) {
   std::string text = testing::tongue_scene_head(0.49, o.material) +
                      "analysis: {type: dynamic, settle: true, duration: 1, dt: 0.004}\n";
   if (!o.force_length.empty()) text += "muscle_force_length: " + o.force_length + "\n";
-  Probe probe{scene::build_scene(scene::parse_scene(text, ".", "<probe scene>")), {}, {}, {}};
-  auto& built = probe.built;
+  const scene::Scene scene = scene::parse_scene(text, ".", "<probe scene>");
+  scene_run::SceneRun run(scene, scene::build_scene(scene));
+  Probe probe{run.built(), {}, {}, {}};
+  const scene::BuiltScene& built = run.built();
   const Vector& rest = built.solid->rest_positions();
   probe.segments = segments_of(*built.muscles, rest);
   probe.rest.assign(rest.data(), rest.data() + rest.size());
   for (const auto& element : built.solid->mesh().elements)
     for (int n : element) probe.elements.push_back(n);
 
-  const int n = built.solid->num_dofs();
-  Vector u = Vector::Zero(n);
-  if (!fem::solve_static(*built.system, u, built.static_settings).converged) {
+  if (!run.start().converged) {
     std::fprintf(stderr, "settling failed\n");
     return 1;
   }
-  fem::NewmarkIntegrator integrator(*built.system, built.dynamic_settings);
-  integrator.initialize(u, Vector::Zero(n), 0.0);
+  const fem::NewmarkIntegrator& integrator = run.integrator();
   // Replicas of the integrator's mass and damping (newmark_integrator.cpp) for dissect().
   const fem::SymmetricMatrix mass = built.solid->mass_matrix(built.dynamic_settings.lumped_mass);
   fem::SymmetricMatrix damping(built.solid->pattern());
@@ -293,9 +292,9 @@ int run(const Options& o) {
       "det J/J0 min\n");
   for (long k = 1; k <= steps; ++k) {
     const std::vector<double>& levels = sequence.next();
-    built.muscles->set_activations(Eigen::Map<const Vector>(levels.data(), levels.size()));
     if (k == o.watch) dissect(probe, integrator, mass, damping, kDt, 40);
-    const fem::StepReport r = integrator.step(kDt);
+    const fem::StepReport r =
+        run.step(kDt, Eigen::Map<const Vector>(levels.data(), levels.size())).report;
     total_cuts += r.cuts;
     if (!r.converged) {
       std::printf("step %ld FAILED: %s\n", k, r.message.c_str());

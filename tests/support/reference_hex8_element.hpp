@@ -1,6 +1,6 @@
 #pragma once
-// The hexahedron as it was evaluated before the fast kernels (issue 6): the straightforward loop
-// over Gauss points through Material::response, kept only as a reference that the optimized
+// The hexahedron as it was evaluated before the fast kernels (docs/speed.md): the straightforward
+// loop over Gauss points through Material::response, kept only as a reference that the optimized
 // element (fem/element/hex8_element.cpp) must reproduce to round-off.
 #include <algorithm>
 #include <limits>

@@ -1,7 +1,7 @@
 #pragma once
 // A small fixed pool of threads for the element loops. Idle workers sleep on a condition
 // variable: nothing spins between jobs, so a second process on a 2-core machine (ctest -j2,
-// another server) keeps its core (issue 6: a spinning OpenMP attempt made the test suite 5x
+// another server) keeps its core (docs/speed.md: a spinning OpenMP attempt made the test suite 5x
 // slower).
 #include <condition_variable>
 #include <cstdint>

@@ -1,5 +1,6 @@
 #pragma once
-// Exponential law in I1b, the source law of the tongue model (DESIGN.md sec. 2):
+// Exponential law in I1b, the source law of the tongue model (Gerard et al. 2003 sec. III.2;
+// docs/physics.md):
 //   W_iso = (a / b) (exp(b (I1b - 3)) - 1); mu0 = 2 a.
 #include "fem/material/material.hpp"
 

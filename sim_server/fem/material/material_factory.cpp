@@ -15,7 +15,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNone = std::numeric_limits<double>::quiet_NaN();
-constexpr double kDefaultPoissonRatio = 0.49;  // DESIGN.md sec. 2: the paper's value
+constexpr double kDefaultPoissonRatio = 0.49;  // the paper's (Gerard et al. 2003 sec. III.2)
 
 // Shortest round-trip text of a double, so messages show exactly what was given.
 std::string format(double v) {
@@ -63,7 +63,7 @@ const std::map<std::string, std::vector<ParameterSpec>>& tables() {
         poisson_ratio_spec(kDefaultPoissonRatio),
     };
     m["linear"] = {
-        // E of the tongue at rest, about 15 kPa (DESIGN.md sec. 2).
+        // E of the tongue at rest, about 15 kPa (Gerard et al. 2003 sec. III.2).
         {"youngs_modulus", "Pa", 15e3, 0.0, kInf, "E; give with poisson_ratio"},
         {"poisson_ratio", "1", kDefaultPoissonRatio, -1.0, 0.5, "nu; give with youngs_modulus"},
         {"shear_modulus", "Pa", kNone, 0.0, kInf, "mu; instead of E and nu, give with K"},

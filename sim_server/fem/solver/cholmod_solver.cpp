@@ -30,7 +30,7 @@ struct CholmodSolver::Impl {
 CholmodSolver::CholmodSolver(std::shared_ptr<const SparsityPattern> pattern)
     : impl_(std::make_unique<Impl>()), pattern_(std::move(pattern)) {
   // One BLAS thread: at the tongue's sizes the supernodes are small, and idle OpenBLAS threads
-  // spinning between calls cost more than the second core gains (issue 6 measures this).
+  // spinning between calls cost more than the second core gains (docs/speed.md).
   openblas_set_num_threads(1);
   // CHOLMOD opens OpenMP regions with a fixed team of 4 for small loops (clearing workspace),
   // after which the idle team spins: on the tongue that made a factorization 18 ms instead of

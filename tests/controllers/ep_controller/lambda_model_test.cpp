@@ -10,7 +10,7 @@ namespace {
 const LambdaConstants k;
 
 TEST(LambdaModel, ConstantsAreTheSpeechartOnes) {
-  // DESIGN.md sec. 4; a changed constant must be a decision, not an accident.
+  // docs/controllers.md; a changed constant must be a decision, not an accident.
   EXPECT_EQ(k.c_per_mm, 0.112);
   EXPECT_EQ(k.mu_s, 0.01);
   EXPECT_EQ(k.f1, 0.80);

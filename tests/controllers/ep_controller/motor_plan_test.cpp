@@ -151,7 +151,7 @@ TEST(MotorPlan, MissingFileIsNamed) {
   }
 }
 
-// The shipped plans read and fit the built-in tongue; /ai/ holds DESIGN.md's targets.
+// The shipped plans read and fit the built-in tongue; /ai/ holds docs/controllers.md's.
 TEST(MotorPlan, ShippedPlansFitTheBuiltInTongue) {
   const std::string dir = CONTROLLERS_DIR "/plans/";
   const MotorPlanSpec ai = read_motor_plan(dir + "ai.yaml");

@@ -11,7 +11,7 @@ namespace tongue::ep_controller {
 namespace {
 
 TEST(MuscleRho, PublishedValuesPerGroup) {
-  // DESIGN.md sec. 4 (Payan & Perrier 1997, SPEECHart), N.
+  // Payan & Perrier 1997, SPEECHart (docs/controllers.md), N.
   EXPECT_EQ(default_group_rho("GGp"), 5.2);
   EXPECT_EQ(default_group_rho("GGm"), 5.2);
   EXPECT_EQ(default_group_rho("GGa"), 5.2);

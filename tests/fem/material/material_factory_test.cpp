@@ -31,7 +31,7 @@ TEST(MaterialFactory, MooneyRivlin5Defaults) {
   const double mu0 = 2.0 * (4367.0 - 1908.0);
   EXPECT_DOUBLE_EQ(m->initial_shear_modulus(), mu0);
   EXPECT_DOUBLE_EQ(m->bulk_modulus(), bulk_from_poisson(mu0, 0.49));
-  EXPECT_NEAR(m->bulk_modulus(), 244.3e3, 0.05e3);  // DESIGN.md sec. 2
+  EXPECT_NEAR(m->bulk_modulus(), 244.3e3, 0.05e3);  // docs/physics.md
   const auto& c = dynamic_cast<const MooneyRivlin5&>(*m).coefficients();
   EXPECT_EQ(c.c10, 4367.0);
   EXPECT_EQ(c.c01, -1908.0);

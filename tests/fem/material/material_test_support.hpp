@@ -61,7 +61,7 @@ struct FirstDerivatives {
   double W1, W2;
 };
 
-// dW_iso/dI1b, dW_iso/dI2b from the laws as printed in DESIGN.md sec. 2, not from the classes'
+// dW_iso/dI1b, dW_iso/dI2b from the laws as printed in docs/physics.md, not from the classes'
 // isochoric_derivatives, so that the closed-form tests compare two independent codes.
 inline FirstDerivatives closed_form_derivatives(const Material& m, double I1b, double I2b) {
   if (const auto* mr = dynamic_cast<const MooneyRivlin5*>(&m)) {

@@ -1,7 +1,7 @@
-// The solver policies of issue 6 on the built-in tongue, through its scenes: a tongue at rest
-// costs one residual per step and a change of activation is never skipped; the reused
-// factorization (the default) reaches the state full Newton reaches; two threads give the run of
-// one bit for bit.
+// The dynamic solver's policies (docs/speed.md) on the built-in tongue, through its scenes: a
+// tongue at rest costs one residual per step and a change of activation is never skipped; the
+// reused factorization (the default) reaches the state full Newton reaches; two threads give the
+// run of one bit for bit.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -10,12 +10,15 @@
 #include <string>
 #include <vector>
 
-#include "fem/integrator/newmark_integrator.hpp"
-#include "fem/integrator/static_solver.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_reader.hpp"
+#include "scene_run/scene_run.hpp"
 
-namespace tongue::scene {
+namespace tongue::scene_run {
+using scene::build_scene;
+using scene::dynamic_newton_settings;
+using scene::read_scene;
+using scene::Scene;
 namespace {
 
 Scene tongue_scene(const std::string& name) {
@@ -24,23 +27,19 @@ Scene tongue_scene(const std::string& name) {
 
 // A scene settled and ready to step, as sim_batch runs it.
 struct SettledRun {
-  explicit SettledRun(const Scene& scene) : built(build_scene(scene)) {
-    const int n = built.solid->num_dofs();
-    fem::Vector u = fem::Vector::Zero(n);
-    const fem::StaticReport settled = fem::solve_static(*built.system, u, built.static_settings);
+  explicit SettledRun(const Scene& scene) : run(scene, build_scene(scene)) {
+    const fem::StaticReport settled = run.start();
     EXPECT_TRUE(settled.converged) << settled.message;
-    integrator = std::make_unique<fem::NewmarkIntegrator>(*built.system, built.dynamic_settings);
-    integrator->initialize(u, fem::Vector::Zero(n));
   }
   // One step of dt with the schedule's levels at its end time.
-  fem::StepReport step(double dt) {
-    built.muscles->set_activations(built.activations.levels_at(integrator->time() + dt));
-    const fem::StepReport r = integrator->step(dt);
+  fem::StepReport step(double dt) { return step(dt, levels_at(run.time() + dt)); }
+  fem::StepReport step(double dt, const fem::Vector& levels) {
+    const fem::StepReport r = run.step(dt, levels).report;
     EXPECT_TRUE(r.converged) << r.message;
     return r;
   }
-  BuiltScene built;
-  std::unique_ptr<fem::NewmarkIntegrator> integrator;
+  fem::Vector levels_at(double t) const { return run.built().activations.levels_at(t); }
+  scene_run::SceneRun run;
 };
 
 double max_nodal_distance(const fem::Vector& a, const fem::Vector& b) {
@@ -54,7 +53,7 @@ TEST(SolverPolicy, TongueAtRestCostsOneResidualPerStepAndAChangeIsNeverSkipped) 
   const Scene scene = tongue_scene("tongue_rest");
   SettledRun run(scene);
   const double dt = scene.analysis.dt;
-  const fem::Vector settled = run.integrator->displacement();
+  const fem::Vector settled = run.run.displacement();
   // The settled state's residual is at the settling's tolerance; the first steps may iterate
   // once to bring it to the dynamic one. From then on every step is the predictor accepted.
   for (int s = 0; s < 3; ++s) run.step(dt);
@@ -66,22 +65,22 @@ TEST(SolverPolicy, TongueAtRestCostsOneResidualPerStepAndAChangeIsNeverSkipped) 
   }
   // Skipped steps leave the tongue where it was: within the tolerance the settling met (its
   // residual of ~1e-7 N moves a node by far less than a nanometre against stiffness ~1e3 N/m).
-  EXPECT_LT(max_nodal_distance(run.integrator->displacement(), settled), 1e-9);  // m
+  EXPECT_LT(max_nodal_distance(run.run.displacement(), settled), 1e-9);  // m
 
   // A change of activation, however small in the force it adds (1e-4 of SG's 24 N: 2.4 mN, still
   // far above the residual tolerance), is solved, not skipped.
-  const int sg = run.built.muscles->index_of("SG_left");
+  const int sg = run.run.built().muscles->index_of("SG_left");
   ASSERT_GE(sg, 0);
-  run.built.muscles->set_activation(sg, 1e-4);
-  const fem::StepReport r = run.integrator->step(dt);
-  EXPECT_TRUE(r.converged);
+  fem::Vector levels = run.levels_at(run.run.time() + dt);
+  levels[sg] = 1e-4;
+  const fem::StepReport r = run.step(dt, levels);
   EXPECT_GE(r.iterations, 1);
 }
 
 fem::Vector run_sg(Scene scene, int steps) {
   SettledRun run(scene);
   for (int s = 0; s < steps; ++s) run.step(scene.analysis.dt);
-  return run.integrator->displacement();
+  return run.run.displacement();
 }
 
 TEST(SolverPolicy, ReusedFactorizationReachesTheFullNewtonState) {
@@ -110,4 +109,4 @@ TEST(SolverPolicy, TwoThreadsGiveTheSameRunAsOne) {
 }
 
 }  // namespace
-}  // namespace tongue::scene
+}  // namespace tongue::scene_run

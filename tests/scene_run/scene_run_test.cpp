@@ -1,0 +1,124 @@
+// The run object on a small box with one muscle: the start-up order (settled, at rest, muscles
+// off), activations as the step's input, a restart that repeats the run bit for bit, and the
+// muscle frame each step returns.
+#include <gtest/gtest.h>
+
+#include <stdexcept>
+#include <string>
+
+#include "scene/scene_builder.hpp"
+#include "scene/scene_reader.hpp"
+#include "scene_run/scene_run.hpp"
+
+namespace tongue::scene_run {
+namespace {
+
+// A 40 x 10 x 10 mm block clamped at x = 0 under gravity, one muscle along the free end.
+constexpr const char* kBox = R"(
+mesh:
+  box: {size: [0.04, 0.01, 0.01], divisions: [4, 1, 1]}
+material: {type: mooney_rivlin5, density: 1000}
+constraints:
+  - {set: x_min, components: [x, y, z]}
+gravity: [0, -9.81, 0]
+muscles:
+  - {name: flexor, max_force: 0.01, elements: [2, 3], fibres: [{nodes: [2, 3, 4]}]}
+damping: {beta: 0.028}
+analysis: {type: dynamic, duration: 0.02, dt: 0.002, settle: SETTLE}
+)";
+
+scene::Scene box(bool settle) {
+  std::string text = kBox;
+  text.replace(text.find("SETTLE"), 6, settle ? "true" : "false");
+  return scene::parse_scene(text, "", "box.yaml");
+}
+
+fem::Vector level(double a) {
+  return fem::Vector::Constant(1, a);
+}
+
+TEST(SceneRun, StartSettlesUnderGravityWithMusclesOff) {
+  const scene::Scene scene = box(true);
+  SceneRun run(scene, scene::build_scene(scene));
+  const fem::StaticReport settled = run.start();
+  ASSERT_TRUE(settled.converged) << settled.message;
+  EXPECT_FALSE(settled.increments.empty());
+  EXPECT_EQ(run.step_count(), 0);
+  EXPECT_EQ(run.time(), 0.0);
+  // Gravity bends the free end down before any muscle acts.
+  EXPECT_LT(run.displacement().minCoeff(), 0.0);
+  EXPECT_EQ(run.displacement(), run.initial_displacement());
+  EXPECT_EQ(run.velocity().norm(), 0.0);
+  EXPECT_EQ(run.levels(), level(0.0));
+  // Settled means at equilibrium: with no muscle acting, a step hardly moves it (the settling's
+  // residual tolerance moves a node by far less than a micrometre at this stiffness).
+  const StepResult r = run.step(0.002, level(0.0));
+  ASSERT_TRUE(r.report.converged) << r.report.message;
+  EXPECT_LT((run.displacement() - run.initial_displacement()).lpNorm<Eigen::Infinity>(), 1e-6);
+}
+
+TEST(SceneRun, WithoutSettlingStartsFromTheRestState) {
+  const scene::Scene scene = box(false);
+  SceneRun run(scene, scene::build_scene(scene));
+  const fem::StaticReport settled = run.start();
+  EXPECT_TRUE(settled.converged);
+  EXPECT_TRUE(settled.increments.empty());
+  EXPECT_EQ(run.displacement().norm(), 0.0);
+}
+
+TEST(SceneRun, StepTakesTheLevelsAndReturnsTheMuscleFrame) {
+  const scene::Scene scene = box(true);
+  SceneRun run(scene, scene::build_scene(scene));
+  ASSERT_TRUE(run.start().converged);
+  const StepResult r = run.step(0.002, level(0.5));
+  ASSERT_TRUE(r.report.converged) << r.report.message;
+  EXPECT_EQ(run.step_count(), 1);
+  EXPECT_DOUBLE_EQ(run.time(), 0.002);
+  EXPECT_EQ(run.levels(), level(0.5));
+  ASSERT_EQ(r.muscles.activations.size(), 1);
+  EXPECT_EQ(r.muscles.activations[0], 0.5);
+  // The fibre (nodes 2, 3, 4 along x at 10 mm spacing) is about 20 mm long, and it shortens
+  // under its tension: dL/dt < 0.
+  EXPECT_NEAR(r.muscles.lengths[0], 0.02, 1e-3);
+  EXPECT_LT(r.muscles.velocities[0], 0.0);
+  // The frame of the state reached is the one step() returned.
+  const run_file::MuscleFrame now = run.muscle_frame();
+  EXPECT_EQ(now.lengths, r.muscles.lengths);
+  EXPECT_EQ(now.velocities, r.muscles.velocities);
+  EXPECT_FALSE(r.ellipticity_loss);
+}
+
+TEST(SceneRun, RestartRepeatsTheRunBitForBit) {
+  const scene::Scene scene = box(true);
+  SceneRun run(scene, scene::build_scene(scene));
+  ASSERT_TRUE(run.start().converged);
+  const auto drive = [&] {
+    for (int s = 0; s < 5; ++s) run.step(0.002, level(s % 2 == 0 ? 1.0 : 0.2));
+    return run.displacement();
+  };
+  const fem::Vector first = drive();
+  run.restart();
+  EXPECT_EQ(run.step_count(), 0);
+  EXPECT_EQ(run.displacement(), run.initial_displacement());
+  EXPECT_EQ(run.levels(), level(0.0));
+  EXPECT_EQ(drive(), first);
+}
+
+TEST(SceneRun, RejectsLevelsOfTheWrongSizeOrRangeAndStaticScenes) {
+  const scene::Scene scene = box(true);
+  SceneRun run(scene, scene::build_scene(scene));
+  EXPECT_THROW(run.step(0.002, level(0.0)), std::logic_error);  // before start()
+  ASSERT_TRUE(run.start().converged);
+  EXPECT_THROW(run.step(0.002, fem::Vector::Zero(2)), std::invalid_argument);
+  EXPECT_THROW(run.step(0.002, level(1.5)), std::invalid_argument);
+  EXPECT_EQ(run.step_count(), 0);  // nothing was stepped
+
+  std::string text = kBox;
+  const std::string dynamic = "{type: dynamic, duration: 0.02, dt: 0.002, settle: SETTLE}";
+  text.replace(text.find(dynamic), dynamic.size(), "{type: static}");
+  const scene::Scene fixed = scene::parse_scene(text, "", "static.yaml");
+  EXPECT_THROW(SceneRun(fixed, scene::build_scene(fixed)), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace tongue::scene_run
