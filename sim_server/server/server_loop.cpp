@@ -85,22 +85,7 @@ ExitStatus ServerLoop::run() {
   }
   if (log_) {
     try {
-      std::string text;
-      switch (status) {
-        case ExitStatus::ok:
-          text = "completed";
-          break;
-        case ExitStatus::interrupted:
-          text = "interrupted";
-          break;
-        case ExitStatus::silence:
-          text = "stopped: " + silence_text();
-          break;
-        default:
-          text = "failed: " + failure_;
-          break;
-      }
-      log_->set_attribute("status", text);
+      log_->set_attribute("status", status_text(status));
       log_->set_attribute("resets", std::to_string(resets_));
       log_->flush();
     } catch (const std::exception& e) {
@@ -109,6 +94,21 @@ ExitStatus ServerLoop::run() {
     }
   }
   return status;
+}
+
+std::string ServerLoop::status_text(ExitStatus status) const {
+  switch (status) {
+    case ExitStatus::ok:
+      return "completed";
+    case ExitStatus::interrupted:
+      return "interrupted";
+    case ExitStatus::silence:
+      return "stopped: " + silence_text();
+    case ExitStatus::error:
+    case ExitStatus::not_converged:
+      break;
+  }
+  return "failed: " + failure_;
 }
 
 ExitStatus ServerLoop::loop() {
@@ -285,15 +285,19 @@ void ServerLoop::record_activation(const bus::IncomingMessage& message) {
     last_activation_ = steady_seconds();
     return;
   }
+  add_to_round(msg.step, check);
+}
+
+void ServerLoop::add_to_round(std::int64_t tagged, const bus::ActivationCheck& check) {
   const std::int64_t step = run_.step_count();
-  if (msg.step <= step) {
+  if (tagged <= step) {
     reject("stale activation",
-           "step " + std::to_string(msg.step) + " <= current step " + std::to_string(step));
+           "step " + std::to_string(tagged) + " <= current step " + std::to_string(step));
     return;
   }
-  if (msg.step > step + 1) {
+  if (tagged > step + 1) {
     reject("future activation",
-           "step " + std::to_string(msg.step) + " > next step " + std::to_string(step + 1));
+           "step " + std::to_string(tagged) + " > next step " + std::to_string(step + 1));
     return;
   }
   // While paused a round can be complete; a further message then starts the next one (with one
@@ -399,28 +403,29 @@ void ServerLoop::take_step(const fem::Vector& levels) {
         false);
     return;
   }
-  const std::int64_t step = run_.step_count();
-  if (options_.mode == Mode::realtime) {
-    const double late = steady_seconds() - finish_by;
-    if (late > 0.0) {
-      ++overruns_;
-      char text[128];
-      std::snprintf(text, sizeof text,
-                    "sim_server: overrun: step %lld finished %.3g ms late; %lld overruns in all",
-                    static_cast<long long>(step), late * 1e3, static_cast<long long>(overruns_));
-      reports_.report("overrun", text);
-    }
-  }
-  if (last_.ellipticity_loss) {
-    std::fprintf(stderr, "sim_server: warning: at step %lld %s\n", static_cast<long long>(step),
-                 last_.material_warning.c_str());
-    if (log_)
-      log_->set_attribute("material_warning",
-                          "step " + std::to_string(step) + ": " + last_.material_warning);
-  }
+  if (options_.mode == Mode::realtime) count_overrun(steady_seconds() - finish_by);
+  if (last_.ellipticity_loss) warn_material();
   if (options_.mode == Mode::lockstep) round_.start(run_.levels());
   log_frame();
   if (should_publish()) publish_state("ok");
+}
+
+void ServerLoop::count_overrun(double late) {
+  if (late <= 0.0) return;
+  ++overruns_;
+  char text[128];
+  std::snprintf(text, sizeof text,
+                "sim_server: overrun: step %lld finished %.3g ms late; %lld overruns in all",
+                static_cast<long long>(run_.step_count()), late * 1e3,
+                static_cast<long long>(overruns_));
+  reports_.report("overrun", text);
+}
+
+void ServerLoop::warn_material() {
+  const std::string step = std::to_string(run_.step_count());
+  std::fprintf(stderr, "sim_server: warning: at step %s %s\n", step.c_str(),
+               last_.material_warning.c_str());
+  if (log_) log_->set_attribute("material_warning", "step " + step + ": " + last_.material_warning);
 }
 
 void ServerLoop::publish_model() {

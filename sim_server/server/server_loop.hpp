@@ -36,6 +36,7 @@
 #include <string>
 #include <vector>
 
+#include "bus/activation_validation.hpp"
 #include "bus/command.hpp"
 #include "bus/server_bus.hpp"
 #include "common/rate_limited_reporter.hpp"
@@ -105,6 +106,7 @@ class ServerLoop {
   // The handlers: they record, never step or publish.
   void record(const bus::IncomingMessage& message);
   void record_activation(const bus::IncomingMessage& message);
+  void add_to_round(std::int64_t tagged, const bus::ActivationCheck& check);  // lock-step
   void record_command(const bus::IncomingMessage& message);
   void reject(const std::string& kind, const std::string& reason);
 
@@ -113,9 +115,12 @@ class ServerLoop {
   void clear_to_step_zero();
   void execute(bus::Command command);
   void take_step(const fem::Vector& levels);
+  void count_overrun(double late);  // real-time: late [s] > 0 is an overrun
+  void warn_material();             // the first loss of ellipticity: stderr and run file
   void publish_model();
   void publish_state(const std::string& status, bool converged = true);
   void log_frame();
+  std::string status_text(ExitStatus status) const;  // the run file's status attribute
   std::string silence_text() const;
   std::string lockstep_wait_text() const;  // what lock-step waits for: the step, m of N arrived
 
