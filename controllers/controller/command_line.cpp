@@ -102,7 +102,8 @@ CommandLine parse_command_line(int argc, const char* const* argv,
 }
 
 std::string common_usage() {
-  return std::string("  --lcm-url URL     LCM provider (default ") + std::string(bus::kDefaultLcmUrl) +
+  return std::string("  --lcm-url URL     LCM provider (default ") +
+         std::string(bus::kDefaultLcmUrl) +
          ")\n"
          "  --prefix P        channel prefix of the server, A-Z 0-9 _ (default TONGUE_)\n"
          "  --mode M          lockstep (default): answer state k with the activation for step\n"

@@ -26,7 +26,8 @@ EpController::EpController(MotorPlanSpec plan, EpSettings settings)
 
 void EpController::start(const controller::Model& model) {
   if (!(model.dt > 0.0) || !std::isfinite(model.dt))
-    throw std::runtime_error("the model's dt is " + controller::number_text(model.dt) + " s, not > 0");
+    throw std::runtime_error("the model's dt is " + controller::number_text(model.dt) +
+                             " s, not > 0");
   dt_ = model.dt;
   names_ = model.muscle_names;
   plan_.emplace(spec_, names_);
@@ -34,10 +35,11 @@ void EpController::start(const controller::Model& model) {
   std::vector<std::pair<std::string, double>> overrides;
   for (const RhoEntry& r : spec_.rho) {
     if (controller::select_muscles(r.name, names_).empty())
-      throw controller::InputError(spec_.source, r.key_path,
-                       "no muscle is named '" + r.name + "' or starts with '" + r.name +
-                           "_' (the server's muscles: " + controller::joined_names(names_) + ")",
-                       r.line);
+      throw controller::InputError(
+          spec_.source, r.key_path,
+          "no muscle is named '" + r.name + "' or starts with '" + r.name +
+              "_' (the server's muscles: " + controller::joined_names(names_) + ")",
+          r.line);
     overrides.emplace_back(r.name, r.rho_n);
   }
   std::vector<double> rho;
@@ -66,8 +68,9 @@ void EpController::observe(const controller::State& state) {
     const double l = state.muscle_lengths[m], v = state.muscle_velocities[m];
     if (!std::isfinite(l) || !(l > 0.0) || !std::isfinite(v))
       throw std::runtime_error("the state of step " + std::to_string(state.step) + " gives " +
-                               names_[m] + " length " + controller::number_text(l) + " m, velocity " +
-                               controller::number_text(v) + " m/s: not usable feedback");
+                               names_[m] + " length " + controller::number_text(l) +
+                               " m, velocity " + controller::number_text(v) +
+                               " m/s: not usable feedback");
   }
   if (!have_rest_lengths_) {
     for (std::size_t m = 0; m < n; ++m) laws_[m].rest_length_mm = state.muscle_lengths[m] * kMmPerM;

@@ -24,7 +24,8 @@ std::unique_ptr<controller::Controller> make(const controller::CommandLine& line
   if (const auto it = line.values.find("--force-lag-ms"); it != line.values.end()) {
     const double ms = controller::parse_number("--force-lag-ms", it->second);
     if (ms < 0.0 || ms > 10000.0)
-      throw controller::UsageError("--force-lag-ms must be in [0, 10000] ms, not '" + it->second + "'");
+      throw controller::UsageError("--force-lag-ms must be in [0, 10000] ms, not '" + it->second +
+                                   "'");
     settings.force_lag_s = ms * 1e-3;
   }
   if (const auto it = line.values.find("--velocity-factor"); it != line.values.end()) {
@@ -36,8 +37,8 @@ std::unique_ptr<controller::Controller> make(const controller::CommandLine& line
       throw controller::UsageError("--velocity-factor must be on or off, not '" + it->second + "'");
     }
   }
-  return std::make_unique<ep_controller::EpController>(ep_controller::read_motor_plan(line.values.at("--plan")),
-                                            settings);
+  return std::make_unique<ep_controller::EpController>(
+      ep_controller::read_motor_plan(line.values.at("--plan")), settings);
 }
 
 }  // namespace

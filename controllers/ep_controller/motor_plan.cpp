@@ -33,7 +33,8 @@ struct Durations {
 };
 
 // Reads transition, hold and start where present in n (the top level or an entry).
-void read_durations(const controller::YamlFile& f, const YAML::Node& n, const std::string& path, Durations& d) {
+void read_durations(const controller::YamlFile& f, const YAML::Node& n, const std::string& path,
+                    Durations& d) {
   if (const auto v = n["transition"]; controller::present(v))
     d.transition_s = f.non_negative(v, controller::child_path(path, "transition"), "s");
   if (const auto v = n["hold"]; controller::present(v))
@@ -53,7 +54,8 @@ PlanEntry read_entry(const controller::YamlFile& f, const std::string& name, con
     e.track.targets_mm = f.numbers(n, path);
   } else if (n.IsMap()) {
     f.check_keys(n, path, {"targets", "transition", "hold", "start"});
-    e.track.targets_mm = f.numbers(f.required(n, path, "targets"), controller::child_path(path, "targets"));
+    e.track.targets_mm =
+        f.numbers(f.required(n, path, "targets"), controller::child_path(path, "targets"));
     read_durations(f, n, path, d);
   } else {
     f.fail(path,
@@ -95,7 +97,8 @@ MotorPlanSpec plan_from(const controller::YamlFile& f) {
       const std::string path = controller::child_path("rho", name);
       RhoEntry r{name, f.number(it->second, path), path, it->second.Mark().line + 1};
       if (!(r.rho_n > 0.0))
-        f.fail(path, "rho must be positive, got " + controller::number_text(r.rho_n) + " N", it->second);
+        f.fail(path, "rho must be positive, got " + controller::number_text(r.rho_n) + " N",
+               it->second);
       spec.rho.push_back(r);
     }
   }
@@ -118,14 +121,16 @@ MotorPlan::MotorPlan(const MotorPlanSpec& spec, const std::vector<std::string>& 
   for (const PlanEntry& e : spec.entries) {
     const std::vector<int> members = controller::select_muscles(e.name, muscle_names);
     if (members.empty())
-      throw controller::InputError(spec.source, e.key_path,
-                       "no muscle is named '" + e.name + "' or starts with '" + e.name +
-                           "_' (the server's muscles: " + controller::joined_names(muscle_names) + ")",
-                       e.line);
+      throw controller::InputError(
+          spec.source, e.key_path,
+          "no muscle is named '" + e.name + "' or starts with '" + e.name +
+              "_' (the server's muscles: " + controller::joined_names(muscle_names) + ")",
+          e.line);
     for (int m : members) {
       if (track_of_[m] >= 0)
         throw controller::InputError(spec.source, e.key_path,
-                         "muscle " + muscle_names[m] + " is also set by " + set_by[m], e.line);
+                                     "muscle " + muscle_names[m] + " is also set by " + set_by[m],
+                                     e.line);
       track_of_[m] = static_cast<int>(tracks_.size());
       set_by[m] = e.key_path;
     }

@@ -29,7 +29,8 @@ std::vector<double> muscle_rhos(const std::vector<std::string>& muscle_names,
   for (std::size_t m = 0; m < n; ++m) {
     if (rho[m]) continue;
     const std::string group = controller::muscle_group(muscle_names[m]);
-    if (const auto r = default_group_rho(group)) share(controller::select_muscles(group, muscle_names), *r);
+    if (const auto r = default_group_rho(group))
+      share(controller::select_muscles(group, muscle_names), *r);
   }
   for (const auto& [name, group_rho] : overrides)
     share(controller::select_muscles(name, muscle_names), group_rho);

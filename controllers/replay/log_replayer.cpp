@@ -26,7 +26,8 @@ void LogReplayer::start(const controller::Model& model) {
   std::sort(served.begin(), served.end());
   if (logged != served)
     fail("/muscles/names", "the log's muscles (" + controller::joined_names(log_.muscle_names) +
-                               ") are not the server's (" + controller::joined_names(model.muscle_names) +
+                               ") are not the server's (" +
+                               controller::joined_names(model.muscle_names) +
                                "): replay into a server running the same scene");
   if (!log_.max_forces_n.empty()) {
     for (std::size_t j = 0; j < log_.muscles(); ++j) {
@@ -35,9 +36,9 @@ void LogReplayer::start(const controller::Model& model) {
       const double served_force =
           model.muscle_max_forces[static_cast<std::size_t>(it - model.muscle_names.begin())];
       if (served_force != log_.max_forces_n[j])
-        fail("/muscles/max_force", log_.muscle_names[j] + " has F_max " +
-                                       controller::number_text(log_.max_forces_n[j]) + " N in the log, " +
-                                       controller::number_text(served_force) + " N on the server");
+        fail("/muscles/max_force",
+             log_.muscle_names[j] + " has F_max " + controller::number_text(log_.max_forces_n[j]) +
+                 " N in the log, " + controller::number_text(served_force) + " N on the server");
     }
   }
   if (log_.resets > 0)
@@ -46,9 +47,10 @@ void LogReplayer::start(const controller::Model& model) {
   for (std::size_t k = 0; k < log_.frames(); ++k) {
     const double expected = static_cast<double>(k) * model.dt;
     if (std::abs(log_.time_s[k] - expected) > kTimeTolerance * model.dt)
-      fail("/time", "frame " + std::to_string(k) + " is at " + controller::number_text(log_.time_s[k]) +
-                        " s, step " + std::to_string(k) + " of the server (dt " +
-                        controller::number_text(model.dt) + " s) at " + controller::number_text(expected) +
+      fail("/time", "frame " + std::to_string(k) + " is at " +
+                        controller::number_text(log_.time_s[k]) + " s, step " + std::to_string(k) +
+                        " of the server (dt " + controller::number_text(model.dt) + " s) at " +
+                        controller::number_text(expected) +
                         " s: the log must hold every step of one run with the server's dt");
   }
 }

@@ -1,6 +1,7 @@
 #pragma once
-// The parts of an HDF5 run file (layout: sim_server/run_file/run_file_writer.hpp) that a replay needs:
-// the time of each frame, the muscles' names and F_max, and the activation levels of each frame.
+// The parts of an HDF5 run file (layout: sim_server/run_file/run_file_writer.hpp) that a replay
+// needs: the time of each frame, the muscles' names and F_max, and the activation levels of each
+// frame.
 #include <cstddef>
 #include <string>
 #include <vector>

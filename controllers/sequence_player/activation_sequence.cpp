@@ -11,7 +11,8 @@
 namespace tongue::sequence_player {
 namespace {
 
-SequenceEntry read_entry(const controller::YamlFile& f, const YAML::Node& n, const std::string& path) {
+SequenceEntry read_entry(const controller::YamlFile& f, const YAML::Node& n,
+                         const std::string& path) {
   f.expect_map(n, path);
   f.check_keys(n, path,
                {"muscle", "start", "end", "level", "force", "level_from", "level_to", "force_from",
@@ -27,15 +28,17 @@ SequenceEntry read_entry(const controller::YamlFile& f, const YAML::Node& n, con
     e.end_s = f.number(n["end"], controller::child_path(path, "end"));
     if (!(e.end_s > e.start_s))
       f.fail(controller::child_path(path, "end"),
-             "must be after start (" + controller::number_text(e.start_s) + " s), got " + controller::number_text(e.end_s) +
-                 " s",
+             "must be after start (" + controller::number_text(e.start_s) + " s), got " +
+                 controller::number_text(e.end_s) + " s",
              n["end"]);
   }
 
   // Exactly one way of giving the value.
   const bool level = controller::present(n["level"]), force = controller::present(n["force"]);
-  const bool level_ramp = controller::present(n["level_from"]) || controller::present(n["level_to"]);
-  const bool force_ramp = controller::present(n["force_from"]) || controller::present(n["force_to"]);
+  const bool level_ramp =
+      controller::present(n["level_from"]) || controller::present(n["level_to"]);
+  const bool force_ramp =
+      controller::present(n["force_from"]) || controller::present(n["force_to"]);
   if (level + force + level_ramp + force_ramp != 1)
     f.fail(path,
            "give exactly one of level, force (a step), level_from + level_to, force_from + "
@@ -76,7 +79,8 @@ SequenceSpec sequence_from(const controller::YamlFile& f) {
   if (const auto d = root["duration"]; controller::present(d)) {
     spec.duration_s = f.number(d, "duration");
     if (!(*spec.duration_s > 0.0))
-      f.fail("duration", "must be positive, got " + controller::number_text(*spec.duration_s) + " s", d);
+      f.fail("duration",
+             "must be positive, got " + controller::number_text(*spec.duration_s) + " s", d);
   }
   for (std::size_t i = 0; i < list.size(); ++i)
     spec.entries.push_back(read_entry(f, list[i], controller::index_path("entries", i)));
@@ -107,10 +111,11 @@ ActivationSequence::ActivationSequence(const SequenceSpec& spec,
     Resolved r;
     r.muscles = controller::select_muscles(e.muscle, muscle_names);
     if (r.muscles.empty())
-      throw controller::InputError(spec.source, controller::child_path(e.key_path, "muscle"),
-                       "no muscle is named '" + e.muscle + "' or starts with '" + e.muscle +
-                           "_' (the server's muscles: " + controller::joined_names(muscle_names) + ")",
-                       e.line);
+      throw controller::InputError(
+          spec.source, controller::child_path(e.key_path, "muscle"),
+          "no muscle is named '" + e.muscle + "' or starts with '" + e.muscle +
+              "_' (the server's muscles: " + controller::joined_names(muscle_names) + ")",
+          e.line);
     r.start_s = e.start_s;
     r.end_s = e.end_s;
     r.ramp = e.ramp;
@@ -124,9 +129,10 @@ ActivationSequence::ActivationSequence(const SequenceSpec& spec,
       // Round-off in a force written as the exact sum must not reject it.
       if (largest > total * (1.0 + 1e-12))
         throw controller::InputError(spec.source, e.key_path,
-                         controller::number_text(largest) + " N exceeds the summed F_max of " + e.muscle +
-                             ", " + controller::number_text(total) + " N",
-                         e.line);
+                                     controller::number_text(largest) +
+                                         " N exceeds the summed F_max of " + e.muscle + ", " +
+                                         controller::number_text(total) + " N",
+                                     e.line);
       r.from_level = std::min(1.0, e.from / total);
       r.to_level = std::min(1.0, e.to / total);
     }

@@ -9,7 +9,8 @@ namespace tongue::sequence_player {
 
 void SequencePlayer::start(const controller::Model& model) {
   if (!(model.dt > 0.0) || !std::isfinite(model.dt))
-    throw std::runtime_error("the model's dt is " + controller::number_text(model.dt) + " s, not > 0");
+    throw std::runtime_error("the model's dt is " + controller::number_text(model.dt) +
+                             " s, not > 0");
   dt_ = model.dt;
   sequence_.emplace(spec_, model.muscle_names, model.muscle_max_forces);
   if (spec_.duration_s) last_step_ = steps_covering(*spec_.duration_s, dt_);

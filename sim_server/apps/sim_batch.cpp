@@ -20,13 +20,13 @@
 #include <string>
 
 #include "fem/assembly/ellipticity_monitor.hpp"
-#include "scene_run/scene_run.hpp"
 #include "fem/integrator/static_solver.hpp"
+#include "model/default_tongue.hpp"
 #include "run_file/run_file_writer.hpp"
-#include "scene_run/scene_run_file.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_reader.hpp"
-#include "model/default_tongue.hpp"
+#include "scene_run/scene_run.hpp"
+#include "scene_run/scene_run_file.hpp"
 
 namespace tongue::apps {
 namespace {
@@ -128,7 +128,8 @@ class BatchRun {
         "analysis\n",
         scene_.source.c_str(), solid.mesh().num_nodes(), solid.mesh().num_elements(),
         solid.dofs().num_free(), solid.total_mass(), solid.reference_volume() * 1e6,
-        built().muscles ? built().muscles->num_muscles() : 0, is_dynamic() ? "dynamic" : "static");
+        this->built().muscles ? this->built().muscles->num_muscles() : 0,
+        is_dynamic() ? "dynamic" : "static");
     if (log_) {
       std::printf("run file: %s\n", output.c_str());
     } else {
@@ -171,19 +172,18 @@ class BatchRun {
     header("incr", "lambda [1]");
     // One frame per accepted load increment, written as it is reached: a failure later keeps
     // everything up to the last accepted increment.
-    const fem::StaticReport report =
-        fem::solve_static(*built().system, u, built().static_settings,
-                          [&](const fem::StepReport& inc, const fem::Vector& reached) {
-                            Tally one;
-                            one.add(inc);
-                            tally.add(inc);
-                            step_line(tally.steps, inc.time, inc);
-                            track(reached);
-                            check_material(inc.time, reached);
-                            write_frame(inc.time, reached,
-                                        scene_run::scene_muscle_frame(built(), reached, nullptr),
-                                        one.figures());
-                          });
+    const fem::StaticReport report = fem::solve_static(
+        *built().system, u, built().static_settings,
+        [&](const fem::StepReport& inc, const fem::Vector& reached) {
+          Tally one;
+          one.add(inc);
+          tally.add(inc);
+          step_line(tally.steps, inc.time, inc);
+          track(reached);
+          check_material(inc.time, reached);
+          write_frame(inc.time, reached, scene_run::scene_muscle_frame(built(), reached, nullptr),
+                      one.figures());
+        });
     total_.steps += tally.steps;
     total_.iterations += tally.iterations;
     total_.cuts += tally.cuts;
@@ -368,7 +368,7 @@ class BatchRun {
   Tally total_;
   Tally stepping_;  // the dynamic steps alone
   std::string failure_;
-  std::unique_ptr<scene_run::SceneRun> run_;         // a dynamic scene's run
+  std::unique_ptr<scene_run::SceneRun> run_;          // a dynamic scene's run
   std::unique_ptr<fem::EllipticityMonitor> monitor_;  // a static run's
   double wall_ = 0.0, simulated_ = 0.0;
   double max_displacement_ = 0.0, final_displacement_ = 0.0;  // m

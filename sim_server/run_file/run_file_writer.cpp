@@ -208,8 +208,8 @@ class Writer {
 }  // namespace
 
 RunFileWriter::RunFileWriter(const std::string& path, const fem::Mesh& mesh,
-                         const std::string& scene_text, const RunFileOptions& options,
-                         const std::vector<MuscleDescription>& muscles)
+                             const std::string& scene_text, const RunFileOptions& options,
+                             const std::vector<MuscleDescription>& muscles)
     : path_(path),
       num_nodes_(mesh.num_nodes()),
       num_muscles_(static_cast<int>(muscles.size())),
@@ -219,8 +219,7 @@ RunFileWriter::RunFileWriter(const std::string& path, const fem::Mesh& mesh,
   std::error_code ec;
   if (!parent.empty()) std::filesystem::create_directories(parent, ec);
   if (ec)
-    throw RunFileError(path + ": cannot create directory " + parent.string() + ": " +
-                           ec.message());
+    throw RunFileError(path + ": cannot create directory " + parent.string() + ": " + ec.message());
 
   const QuietErrors quiet;
   const Writer w(path);
@@ -357,7 +356,7 @@ RunFileWriter::~RunFileWriter() {
 }
 
 void RunFileWriter::append(double time, const fem::Vector& positions, const SolverFigures& figures,
-                         const MuscleFrame& muscles) {
+                           const MuscleFrame& muscles) {
   if (positions.size() != 3 * num_nodes_)
     throw std::invalid_argument(path_ + ": positions have " + std::to_string(positions.size()) +
                                 " entries, expected 3 x " + std::to_string(num_nodes_));

@@ -87,8 +87,8 @@ class RunFileWriter {
   // Creates (or truncates) the file, creating missing parent directories, and writes the
   // mesh with its named sets, the muscles' descriptions and the root attributes.
   RunFileWriter(const std::string& path, const fem::Mesh& mesh, const std::string& scene_text,
-              const RunFileOptions& options = RunFileOptions{},
-              const std::vector<MuscleDescription>& muscles = {});
+                const RunFileOptions& options = RunFileOptions{},
+                const std::vector<MuscleDescription>& muscles = {});
   ~RunFileWriter();  // flushes and closes; never throws
   RunFileWriter(const RunFileWriter&) = delete;
   RunFileWriter& operator=(const RunFileWriter&) = delete;

@@ -5,8 +5,8 @@
 #include <vector>
 
 #include "fem/types.hpp"
-#include "scene/scene.hpp"
 #include "model/muscle.hpp"
+#include "scene/scene.hpp"
 
 namespace tongue::scene {
 

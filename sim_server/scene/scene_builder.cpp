@@ -15,8 +15,8 @@
 #include "fem/material/material_factory.hpp"
 #include "fem/mesh/ansys_reader.hpp"
 #include "fem/mesh/box_generator.hpp"
-#include "scene/scene_reader.hpp"
 #include "model/default_tongue.hpp"
+#include "scene/scene_reader.hpp"
 
 namespace tongue::scene {
 

@@ -9,9 +9,9 @@
 #include "fem/integrator/mechanical_system.hpp"
 #include "fem/integrator/newmark_integrator.hpp"
 #include "fem/integrator/static_solver.hpp"
+#include "model/muscle_forces.hpp"
 #include "scene/activation_schedule.hpp"
 #include "scene/scene.hpp"
-#include "model/muscle_forces.hpp"
 
 namespace tongue::scene {
 

@@ -2,7 +2,7 @@
 // The run of a built dynamic scene: the one place where a dynamic scene is started and stepped,
 // used by sim_batch, the server, the benchmarks and the tests that run scenes.
 //
-// Start-up order (docs/design.md, "Starting a dynamic run"):
+// Start-up order (docs/design.md, "The initial acceleration with the muscles off"):
 //  1. settle(): static equilibrium under the scene's loads with every muscle off, when the scene
 //     asks for it (analysis.settle); the settled state is the initial state of every restart.
 //  2. restart(): a fresh integrator at the initial state, at rest, time 0, step 0, muscles off.
@@ -67,12 +67,12 @@ class SceneRun {
   int num_muscles() const;
 
   // The last accepted state (before start(): the rest state).
-  std::int64_t step_count() const { return step_; }  // accepted steps since the last restart
-  double time() const { return time_; }              // s
+  std::int64_t step_count() const { return step_; }       // accepted steps since the last restart
+  double time() const { return time_; }                   // s
   const fem::Vector& displacement() const { return u_; }  // m, full vector
   const fem::Vector& velocity() const { return v_; }      // m/s, full vector
   fem::Vector positions() const;                          // m, rest positions + displacement
-  const fem::Vector& levels() const { return levels_; }  // [1], of the last step (0 at step 0)
+  const fem::Vector& levels() const { return levels_; }   // [1], of the last step (0 at step 0)
   const fem::Vector& initial_displacement() const { return initial_u_; }  // m, of step 0
   // The integrator, read-only, for diagnostics that look inside a step (its acceleration, its
   // Newton solver's settings); valid after start().

@@ -20,8 +20,9 @@ std::string utc_now_iso8601() {
 
 }  // namespace
 
-std::unique_ptr<run_file::RunFileWriter> open_scene_run_file(const std::string& path, const scene::Scene& scene,
-                                                 const scene::BuiltScene& built) {
+std::unique_ptr<run_file::RunFileWriter> open_scene_run_file(const std::string& path,
+                                                             const scene::Scene& scene,
+                                                             const scene::BuiltScene& built) {
   const bool dynamic = scene.analysis.type == scene::AnalysisType::dynamic;
   run_file::RunFileOptions options;
   // A static run's frames are load factors, not times. (assign, not = "1": GCC 12 warns
@@ -39,7 +40,8 @@ std::unique_ptr<run_file::RunFileWriter> open_scene_run_file(const std::string& 
       muscles.push_back(std::move(d));
     }
   }
-  auto log = std::make_unique<run_file::RunFileWriter>(path, built.solid->mesh(), scene.text, options, muscles);
+  auto log = std::make_unique<run_file::RunFileWriter>(path, built.solid->mesh(), scene.text,
+                                                       options, muscles);
   log->set_attribute("analysis", dynamic ? "dynamic" : "static");
   // What frame 0 shows, so that pictures can compare the end with rest under gravity.
   log->set_attribute("initial_state",
@@ -53,7 +55,7 @@ std::unique_ptr<run_file::RunFileWriter> open_scene_run_file(const std::string& 
 }
 
 run_file::MuscleFrame scene_muscle_frame(const scene::BuiltScene& built, const fem::Vector& u,
-                               const fem::Vector* v) {
+                                         const fem::Vector* v) {
   run_file::MuscleFrame frame;
   if (!built.muscles) return frame;
   const model::MuscleForces& m = *built.muscles;

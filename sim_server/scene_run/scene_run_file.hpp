@@ -12,12 +12,13 @@ namespace tongue::scene_run {
 
 // Creates the run file at path for a run of scene (built from it): a static run's time axis is
 // the load factor ("1"); root attributes analysis, initial_state and status = "running".
-std::unique_ptr<run_file::RunFileWriter> open_scene_run_file(const std::string& path, const scene::Scene& scene,
-                                                 const scene::BuiltScene& built);
+std::unique_ptr<run_file::RunFileWriter> open_scene_run_file(const std::string& path,
+                                                             const scene::Scene& scene,
+                                                             const scene::BuiltScene& built);
 
 // The muscles' activations, lengths [m] and velocities [m/s] at displacement u and nodal
 // velocity v (null: at rest, zero velocities); empty vectors without muscles.
 run_file::MuscleFrame scene_muscle_frame(const scene::BuiltScene& built, const fem::Vector& u,
-                               const fem::Vector* v);
+                                         const fem::Vector* v);
 
 }  // namespace tongue::scene_run

@@ -6,7 +6,7 @@
 
 #include "model/tongue_muscles.hpp"
 
-namespace tongue::controller::testing {
+namespace tongue::testing {
 
 struct MuscleList {
   std::vector<std::string> names;
@@ -29,4 +29,4 @@ inline MuscleList builtin_tongue_muscles() {
   return out;
 }
 
-}  // namespace tongue::controller::testing
+}  // namespace tongue::testing

@@ -11,9 +11,9 @@
 #include <random>
 #include <stdexcept>
 
-#include "support/finite_difference.hpp"
 #include "model/muscle_forces.hpp"
 #include "model/muscle_test_support.hpp"
+#include "support/finite_difference.hpp"
 
 namespace tongue::model {
 namespace {

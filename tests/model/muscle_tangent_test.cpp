@@ -7,9 +7,9 @@
 #include <Eigen/Eigenvalues>
 #include <random>
 
-#include "support/finite_difference.hpp"
 #include "model/muscle_forces.hpp"
 #include "model/muscle_test_support.hpp"
+#include "support/finite_difference.hpp"
 
 namespace tongue::model {
 namespace {

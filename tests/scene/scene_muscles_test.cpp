@@ -8,11 +8,11 @@
 #include <string>
 #include <utility>
 
+#include "model/default_tongue.hpp"
 #include "scene/activation_schedule.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_error_expectations.hpp"
 #include "scene/scene_reader.hpp"
-#include "model/default_tongue.hpp"
 
 namespace tongue::scene {
 namespace {

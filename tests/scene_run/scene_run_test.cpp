@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "model/muscle_forces.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_reader.hpp"
 #include "scene_run/scene_run.hpp"
@@ -77,10 +78,14 @@ TEST(SceneRun, StepTakesTheLevelsAndReturnsTheMuscleFrame) {
   EXPECT_EQ(run.levels(), level(0.5));
   ASSERT_EQ(r.muscles.activations.size(), 1);
   EXPECT_EQ(r.muscles.activations[0], 0.5);
-  // The fibre (nodes 2, 3, 4 along x at 10 mm spacing) is about 20 mm long, and it shortens
-  // under its tension: dL/dt < 0.
+  // The fibre (nodes 2, 3, 4 along x at 10 mm spacing, one fibre: its length is the muscle's)
+  // is about 20 mm long, and it moves.
+  const model::Fibre& fibre = run.built().muscles->muscles()[0].fibres[0];
+  EXPECT_EQ(r.muscles.lengths[0], model::fibre_length(fibre, run.positions()));
   EXPECT_NEAR(r.muscles.lengths[0], 0.02, 1e-3);
-  EXPECT_LT(r.muscles.velocities[0], 0.0);
+  EXPECT_EQ(r.muscles.velocities[0],
+            model::fibre_lengthening_rate(fibre, run.positions(), run.velocity()));
+  EXPECT_NE(r.muscles.velocities[0], 0.0);
   // The frame of the state reached is the one step() returned.
   const run_file::MuscleFrame now = run.muscle_frame();
   EXPECT_EQ(now.lengths, r.muscles.lengths);

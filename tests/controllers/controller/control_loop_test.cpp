@@ -92,8 +92,8 @@ class ControlLoop : public tongue::testing::TempDirTest {
   }
   // Levels of the box's muscle the schedule gives for steps 1..steps.
   std::vector<double> expected_levels(const std::string& schedule, int steps) {
-    const sequence_player::ActivationSequence s(sequence_player::parse_sequence(schedule, "schedule.yaml"),
-                                         {"flexor"}, {0.01});
+    const sequence_player::ActivationSequence s(
+        sequence_player::parse_sequence(schedule, "schedule.yaml"), {"flexor"}, {0.01});
     std::vector<double> out{0.0};  // step 0: every muscle off
     for (int k = 1; k <= steps; ++k) out.push_back(s.levels_at(k * kBoxDt).levels.at(0));
     return out;

@@ -88,7 +88,7 @@ TEST(ActivationSequence, PlayerSendsTheLevelsAtTheEndOfTheStep) {
   m.num_muscles = static_cast<int>(kTongue.names.size());
   m.dt = 0.004;
   player.start(m);
-  EXPECT_EQ(player.last_step(), 25);         // 0.1 s / 4 ms
+  EXPECT_EQ(player.last_step(), 25);                     // 0.1 s / 4 ms
   const controller::MuscleLevels l = player.command(5);  // the step from 16 to 20 ms
   ASSERT_EQ(l.names, (std::vector<std::string>{"SL"}));
   EXPECT_NEAR(l.levels[0], 5 * 0.004 / 0.1, 1e-12);
