@@ -12,7 +12,7 @@ ActivationRound::ActivationRound(int expected) : expected_(expected) {
 }
 
 void ActivationRound::start(const fem::Vector& held) {
-  levels_ = held;
+  held_ = levels_ = held;
   set_.assign(static_cast<std::size_t>(held.size()), false);
   received_ = 0;
 }

@@ -34,11 +34,13 @@ class ActivationRound {
   bool complete() const { return received_ == expected_; }
   // The held levels with every muscle named so far replaced.
   const fem::Vector& levels() const { return levels_; }
+  // The levels the round started from.
+  const fem::Vector& held() const { return held_; }
 
  private:
   int expected_;
   int received_ = 0;
-  fem::Vector levels_;
+  fem::Vector held_, levels_;
   std::vector<bool> set_;  // by model muscle: named by a message of this round
 };
 

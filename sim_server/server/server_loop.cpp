@@ -8,7 +8,6 @@
 #include <thread>
 #include <utility>
 
-#include "bus/activation_validation.hpp"
 #include "scene_run/scene_run_file.hpp"
 #include "server/state_message.hpp"
 
@@ -17,7 +16,7 @@ namespace {
 
 // Longest single wait for messages [ms]: the stop predicate is looked at least this often.
 constexpr int kPollSliceMs = 100;
-// Rejections and overruns of one kind are reported on stderr at most once per this many seconds.
+// Overruns are reported on stderr at most once per this many seconds.
 constexpr double kReportInterval = 1.0;
 // Real-time: a wait for the next step's start shorter than this [s] is slept, not polled (the
 // bus waits in whole milliseconds).
@@ -45,6 +44,12 @@ scene::BuiltScene server_scene(const scene::Scene& scene, scene::BuiltScene buil
   return built;
 }
 
+std::vector<std::string> muscle_names(const scene_run::SceneRun& run) {
+  std::vector<std::string> names;
+  for (const auto& m : run.built().muscles->muscles()) names.push_back(m.name);
+  return names;
+}
+
 void check_options(const ServerOptions& options) {
   if (options.timeout_ms <= 0) throw std::invalid_argument("the timeout must be > 0 ms");
   if (!(options.silence_s > 0.0)) throw std::invalid_argument("the silence must be > 0 s");
@@ -64,10 +69,9 @@ ServerLoop::ServerLoop(const scene::Scene& scene, scene::BuiltScene built, bus::
       bus_(bus),
       options_(std::move(options)),
       stop_requested_(std::move(stop_requested)),
-      reports_(kReportInterval),
-      round_(options_.controllers) {
+      overrun_reports_(kReportInterval),
+      input_(options_.mode, options_.controllers, muscle_names(run_)) {
   check_options(options_);
-  for (const auto& m : run_.built().muscles->muscles()) muscle_names_.push_back(m.name);
   node_indices_ = select_nodes(run_.built().solid->mesh(), options_.nodes, scene.source);
   if (!options_.output.empty())
     log_ = scene_run::open_scene_run_file(options_.output, scene, run_.built());
@@ -126,9 +130,9 @@ ExitStatus ServerLoop::loop() {
       for (bus::IncomingMessage& m : bus_.receive(wait_ms())) inbox_.push_back(std::move(m));
     }
     if (!inbox_.empty()) {
-      record(inbox_.front());
+      input_.record(inbox_.front(), run_.step_count(), steady_seconds());
       inbox_.pop_front();
-      if (pending_) execute(*std::exchange(pending_, std::nullopt));
+      if (const auto command = input_.take_command()) execute(*command);
       if (shutdown_ || !failure_.empty()) continue;
     }
     if (inbox_.empty()) {
@@ -177,13 +181,13 @@ const fem::Vector* ServerLoop::due_levels() const {
   if (paused_ || shutdown_ || !failure_.empty()) return nullptr;
   switch (options_.mode) {
     case Mode::lockstep:
-      return round_.complete() ? &round_.levels() : nullptr;
+      return input_.round().complete() ? &input_.round().levels() : nullptr;
     case Mode::fast:
       // Messages first: a step takes every activation that had arrived before it.
-      return inbox_.empty() ? &held_ : nullptr;
+      return inbox_.empty() ? &input_.held() : nullptr;
     case Mode::realtime:
       if (!inbox_.empty() || step_start_time() - steady_seconds() > kSleepBelow) return nullptr;
-      return &held_;
+      return &input_.held();
   }
   return nullptr;
 }
@@ -204,7 +208,7 @@ std::optional<ExitStatus> ServerLoop::watch_silence() {
     return std::nullopt;
   }
   if (options_.mode != Mode::realtime) return std::nullopt;
-  const bool quiet = now - last_activation_ > options_.silence_s;
+  const bool quiet = now - input_.last_heard() > options_.silence_s;
   if (silent_ && !quiet) {
     silent_ = false;
     std::fprintf(stderr, "sim_server: activations again at step %lld\n",
@@ -217,7 +221,7 @@ std::optional<ExitStatus> ServerLoop::watch_silence() {
     std::fprintf(stderr, "sim_server: %s at step %lld, %s\n", silence_text().c_str(),
                  static_cast<long long>(step), what);
     if (options_.on_silence == OnSilence::stop) return ExitStatus::silence;
-    if (options_.on_silence == OnSilence::decay) held_.setZero();
+    if (options_.on_silence == OnSilence::decay) input_.zero_held();
   }
   return std::nullopt;
 }
@@ -225,7 +229,7 @@ std::optional<ExitStatus> ServerLoop::watch_silence() {
 void ServerLoop::anchor_clock() {
   anchor_time_ = steady_seconds();
   anchor_step_ = run_.step_count();
-  last_activation_ = anchor_time_;
+  input_.mark_heard(anchor_time_);
   silent_ = false;
 }
 
@@ -255,84 +259,9 @@ std::string ServerLoop::lockstep_wait_text() const {
   const std::string rest = "for step " + std::to_string(run_.step_count() + 1) + " within " +
                            std::to_string(options_.timeout_ms) + " ms";
   if (options_.controllers == 1) return "no activation " + rest;
-  return std::to_string(round_.received()) + " of " + std::to_string(round_.expected()) +
+  const ActivationRound& round = input_.round();
+  return std::to_string(round.received()) + " of " + std::to_string(round.expected()) +
          " activations " + rest;
-}
-
-void ServerLoop::record(const bus::IncomingMessage& message) {
-  if (message.channel == bus::IncomingMessage::Channel::activation) {
-    record_activation(message);
-  } else {
-    record_command(message);
-  }
-}
-
-void ServerLoop::record_activation(const bus::IncomingMessage& message) {
-  tongue_lcm::lcmt_tongue_activation msg;
-  std::string reason;
-  if (!bus::decode_activation(message.bytes.data(), static_cast<int>(message.bytes.size()), msg,
-                              reason)) {
-    reject("undecodable activation", reason);
-    return;
-  }
-  const bus::ActivationCheck check = bus::check_activation(msg, muscle_names_);
-  if (!check.accepted) {
-    reject("invalid activation", check.reason);
-    return;
-  }
-  if (options_.mode != Mode::lockstep) {
-    check.merge_into(held_);  // held from the next step on
-    last_activation_ = steady_seconds();
-    return;
-  }
-  add_to_round(msg.step, check);
-}
-
-void ServerLoop::add_to_round(std::int64_t tagged, const bus::ActivationCheck& check) {
-  const std::int64_t step = run_.step_count();
-  if (tagged <= step) {
-    reject("stale activation",
-           "step " + std::to_string(tagged) + " <= current step " + std::to_string(step));
-    return;
-  }
-  if (tagged > step + 1) {
-    reject("future activation",
-           "step " + std::to_string(tagged) + " > next step " + std::to_string(step + 1));
-    return;
-  }
-  // While paused a round can be complete; a further message then starts the next one (with one
-  // controller: the latest activation for k + 1 is the one stepped on resume).
-  if (round_.complete()) round_.start(run_.levels());
-  if (const auto muscle = round_.already_set(check.named)) {
-    reject("overlapping activation",
-           "\"" + muscle_names_[*muscle] + "\" is already set for step " +
-               std::to_string(step + 1) + " by an earlier message (each of the " +
-               std::to_string(options_.controllers) + " controllers names its own muscles)");
-    return;
-  }
-  round_.add(check);
-}
-
-void ServerLoop::record_command(const bus::IncomingMessage& message) {
-  tongue_lcm::lcmt_tongue_command msg;
-  std::string reason;
-  if (!bus::decode_command(message.bytes.data(), static_cast<int>(message.bytes.size()), msg,
-                           reason)) {
-    reject("undecodable command", reason);
-    return;
-  }
-  const std::optional<bus::Command> command = bus::parse_command(msg.command);
-  if (!command) {
-    reject("unknown command", "'" + msg.command + "'");
-    return;
-  }
-  pending_ = *command;
-}
-
-void ServerLoop::reject(const std::string& kind, const std::string& reason) {
-  ++rejected_;
-  reports_.report(kind, "sim_server: rejected " + kind + " at step " +
-                            std::to_string(run_.step_count()) + ": " + reason);
 }
 
 bool ServerLoop::start() {
@@ -347,8 +276,7 @@ bool ServerLoop::start() {
 }
 
 void ServerLoop::clear_to_step_zero() {
-  held_ = fem::Vector::Zero(run_.num_muscles());
-  round_.start(held_);
+  input_.clear(run_.num_muscles());
   last_ = scene_run::StepResult{};
   last_.report.converged = true;
   last_.muscles = run_.muscle_frame();
@@ -378,7 +306,7 @@ void ServerLoop::execute(bus::Command command) {
     case bus::Command::reset:
       run_.restart();
       clear_to_step_zero();
-      rejected_ = 0;
+      input_.clear_rejected();
       overruns_ = 0;
       anchor_clock();
       deadline_ = steady_seconds() + options_.timeout_ms * 1e-3;
@@ -405,7 +333,7 @@ void ServerLoop::take_step(const fem::Vector& levels) {
   }
   if (options_.mode == Mode::realtime) count_overrun(steady_seconds() - finish_by);
   if (last_.ellipticity_loss) warn_material();
-  if (options_.mode == Mode::lockstep) round_.start(run_.levels());
+  if (options_.mode == Mode::lockstep) input_.next_round(run_.levels());
   log_frame();
   if (should_publish()) publish_state("ok");
 }
@@ -418,7 +346,7 @@ void ServerLoop::count_overrun(double late) {
                 "sim_server: overrun: step %lld finished %.3g ms late; %lld overruns in all",
                 static_cast<long long>(run_.step_count()), late * 1e3,
                 static_cast<long long>(overruns_));
-  reports_.report("overrun", text);
+  overrun_reports_.report("overrun", text);
 }
 
 void ServerLoop::warn_material() {
@@ -436,7 +364,7 @@ void ServerLoop::publish_state(const std::string& status, bool converged) {
   StateNotes notes;
   notes.status = status;
   notes.converged = converged;
-  notes.rejected_messages = rejected_;
+  notes.rejected_messages = input_.rejected();
   notes.overruns = overruns_;
   notes.utime = wall_utime();
   bus_.publish_state(state_message(run_, node_indices_, last_, notes));

@@ -24,8 +24,8 @@
 // The run file's root attributes: status ("completed", "interrupted", "stopped: <silence>",
 // "failed: <why>"), resets (how many), material_warning (the first loss of ellipticity).
 //
-// How it is built: the loop takes the messages one at a time and hands each to a handler that
-// only records what it means (an activation merged into the round or the hold, a command
+// How it is built: the loop takes the messages one at a time and hands each to ControlInput,
+// which only records what it means (an activation merged into the round or the hold, a command
 // pending, a rejection counted); the loop alone then decides whether a step is due, and steps,
 // logs and publishes. SceneRun does the physics; take_step() is its one caller.
 #include <cstdint>
@@ -36,7 +36,6 @@
 #include <string>
 #include <vector>
 
-#include "bus/activation_validation.hpp"
 #include "bus/command.hpp"
 #include "bus/server_bus.hpp"
 #include "common/rate_limited_reporter.hpp"
@@ -44,36 +43,11 @@
 #include "scene/scene.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene_run/scene_run.hpp"
-#include "server/activation_round.hpp"
+#include "server/control_input.hpp"
 #include "server/node_selection.hpp"
+#include "server/server_options.hpp"
 
 namespace tongue::server {
-
-enum class Mode { lockstep, fast, realtime };
-enum class OnSilence { hold, stop, decay };  // decay: real-time mode only
-
-struct ServerOptions {
-  Mode mode = Mode::lockstep;
-  int timeout_ms = 1000;  // lock-step: silence before a report (and a stop with OnSilence::stop)
-  // Lock-step: accepted activation messages tagged k + 1 that make step k + 1 (one per
-  // controller, each naming its own muscles). Other modes: 1.
-  int controllers = 1;
-  OnSilence on_silence = OnSilence::hold;
-  double silence_s = 0.5;  // real-time: silence before hold / decay / stop [s]
-  Nodes nodes = Nodes::all;
-  int publish_every = 1;  // fast and real-time: publish the state every this many steps
-  std::optional<std::int64_t> max_steps;  // end (exit 0) once this step is reached
-  std::string output;                     // run file; empty: none
-};
-
-// How the loop ended; the process exit status.
-enum class ExitStatus : int {
-  ok = 0,             // shutdown command, or max_steps reached
-  error = 1,          // an exception (e.g. the run file cannot be written)
-  not_converged = 2,  // a step (or the settling) failed to converge even after cuts
-  silence = 3,        // on_silence stop: no activation within timeout_ms (real-time: silence_s)
-  interrupted = 130,  // SIGINT / SIGTERM (the stop predicate)
-};
 
 class ServerLoop {
  public:
@@ -103,13 +77,6 @@ class ServerLoop {
   double step_start_time() const;  // real-time: steady-clock s at which the next step may start
   bool should_publish() const;     // fast and real-time: whether the current state is published
 
-  // The handlers: they record, never step or publish.
-  void record(const bus::IncomingMessage& message);
-  void record_activation(const bus::IncomingMessage& message);
-  void add_to_round(std::int64_t tagged, const bus::ActivationCheck& check);  // lock-step
-  void record_command(const bus::IncomingMessage& message);
-  void reject(const std::string& kind, const std::string& reason);
-
   // What the loop does.
   bool start();  // settles (once) and clears to step 0; false: settling failed
   void clear_to_step_zero();
@@ -129,21 +96,15 @@ class ServerLoop {
   ServerOptions options_;
   std::function<bool()> stop_requested_;
   std::unique_ptr<run_file::RunFileWriter> log_;
-  std::vector<std::string> muscle_names_;
   std::vector<int> node_indices_;  // nodes the states carry
-  common::RateLimitedReporter reports_;
+  common::RateLimitedReporter overrun_reports_;
 
-  std::deque<bus::IncomingMessage> inbox_;  // received, not yet handled
-  std::optional<bus::Command> pending_;     // recorded by record_command, run by the loop
-  // Lock-step: the messages accepted for the next step so far, merged; complete only while
-  // paused (a complete round is stepped at once otherwise, and on resume).
-  ActivationRound round_;
-  fem::Vector held_;  // fast and real-time: [1] the levels every step uses (zero-order hold)
+  std::deque<bus::IncomingMessage> inbox_;  // received, not yet recorded
+  ControlInput input_;                      // what the messages recorded so far ask for
   // The last step's solver figures and muscle frame (at step 0: none, and the initial frame),
   // published again by pause, describe and reset without computing them twice.
   scene_run::StepResult last_;
 
-  std::int64_t rejected_ = 0;
   std::int64_t overruns_ = 0;
   int resets_ = 0;
   bool paused_ = false;
@@ -152,7 +113,6 @@ class ServerLoop {
   double deadline_ = 0.0;         // lock-step: steady-clock s at which silence is reported
   double anchor_time_ = 0.0;      // real-time: steady-clock s of the clock's anchor
   std::int64_t anchor_step_ = 0;  // real-time: the step at the anchor
-  double last_activation_ = 0.0;  // real-time: steady-clock s of the last valid activation
   bool silent_ = false;           // real-time: the current silence has been reported
 };
 
