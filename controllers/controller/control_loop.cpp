@@ -62,7 +62,7 @@ class Loop {
     return true;
   }
 
-  void command(const std::string& c) {
+  void command(bus::Command c) {
     bus_.send_command(c);
     ++outcome_.counts.commands_sent;
   }
@@ -84,7 +84,7 @@ class Loop {
                                      " (is the server running with --prefix " + options_.prefix +
                                      " on this URL?)");
       if (now >= next_describe) {
-        command("describe");
+        command(bus::Command::describe);
         interval = std::min(2.0 * interval, kLongestDescribe);
         next_describe = now + interval;
       }

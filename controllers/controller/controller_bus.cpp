@@ -52,10 +52,8 @@ void ControllerBus::send_activation(std::int64_t step, const MuscleLevels& level
     throw std::runtime_error("cannot publish on " + channels_.activation);
 }
 
-void ControllerBus::send_command(const std::string& command) {
-  tongue_lcm::lcmt_tongue_command msg;
-  msg.utime = wall_utime();
-  msg.command = command;
+void ControllerBus::send_command(bus::Command command) {
+  const tongue_lcm::lcmt_tongue_command msg = bus::command_message(command, wall_utime());
   if (lcm_.publish(channels_.command, &msg) != 0)
     throw std::runtime_error("cannot publish on " + channels_.command);
 }

@@ -11,6 +11,7 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "bus/channels.hpp"
+#include "bus/command.hpp"
 #include "bus/messages.hpp"
 
 namespace tongue::controller {
@@ -41,7 +42,7 @@ class ControllerBus {
 
   // Throws std::runtime_error naming the channel when LCM cannot publish.
   void send_activation(std::int64_t step, const MuscleLevels& levels);
-  void send_command(const std::string& command);
+  void send_command(bus::Command command);
 
   const std::string& url() const { return url_; }
   const bus::Channels& channels() const { return channels_; }

@@ -8,33 +8,26 @@
 // or written.
 #include <chrono>
 #include <cstdio>
+#include <optional>
 #include <string>
-#include <string_view>
 
 #include <lcm/lcm-cpp.hpp>
 
 #include "bus/channels.hpp"
+#include "bus/command.hpp"
 #include "bus/messages.hpp"
 #include "common/exit_code.hpp"
 
 namespace {
 
-constexpr std::string_view kCommands[] = {"reset", "pause", "resume", "shutdown", "describe"};
-
 void print_usage(std::FILE* to) {
   std::fprintf(to,
-               "usage: sim_command reset|pause|resume|shutdown|describe [--lcm-url URL]\n"
+               "usage: sim_command %s [--lcm-url URL]\n"
                "                   [--prefix TONGUE_]\n"
                "  --lcm-url  LCM provider URL (default %s)\n"
                "  --prefix   channel prefix of the server, A-Z 0-9 _ (default TONGUE_)\n",
+               tongue::bus::command_names("|").c_str(),
                std::string(tongue::bus::kDefaultLcmUrl).c_str());
-}
-
-bool is_command(std::string_view word) {
-  for (const std::string_view c : kCommands) {
-    if (c == word) return true;
-  }
-  return false;
 }
 
 }  // namespace
@@ -42,7 +35,7 @@ bool is_command(std::string_view word) {
 int main(int argc, char** argv) {
   using tongue::common::kExitError;
   using tongue::common::kExitOk;
-  std::string command;
+  std::optional<tongue::bus::Command> command;
   std::string url(tongue::bus::kDefaultLcmUrl);
   std::string prefix(tongue::bus::kDefaultChannelPrefix);
   for (int i = 1; i < argc; ++i) {
@@ -57,15 +50,15 @@ int main(int argc, char** argv) {
         return kExitError;
       }
       (arg == "--lcm-url" ? url : prefix) = argv[++i];
-    } else if (!command.empty() || !is_command(arg)) {
+    } else if (command || !tongue::bus::parse_command(arg)) {
       std::fprintf(stderr, "sim_command: unexpected argument '%s'\n", arg.c_str());
       print_usage(stderr);
       return kExitError;
     } else {
-      command = arg;
+      command = tongue::bus::parse_command(arg);
     }
   }
-  if (command.empty()) {
+  if (!command) {
     print_usage(stderr);
     return kExitError;
   }
@@ -76,11 +69,10 @@ int main(int argc, char** argv) {
       std::fprintf(stderr, "sim_command: cannot open the LCM bus '%s'\n", url.c_str());
       return kExitError;
     }
-    tongue_lcm::lcmt_tongue_command message;
-    message.utime = std::chrono::duration_cast<std::chrono::microseconds>(
-                        std::chrono::system_clock::now().time_since_epoch())
-                        .count();
-    message.command = command;
+    const tongue_lcm::lcmt_tongue_command message = tongue::bus::command_message(
+        *command, std::chrono::duration_cast<std::chrono::microseconds>(
+                      std::chrono::system_clock::now().time_since_epoch())
+                      .count());
     if (lcm.publish(channels.command, &message) != 0) {
       std::fprintf(stderr, "sim_command: could not publish on %s\n", channels.command.c_str());
       return kExitError;

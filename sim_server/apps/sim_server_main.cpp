@@ -22,12 +22,12 @@
 #include <string>
 
 #include "bus/channels.hpp"
+#include "bus/lcm_server_bus.hpp"
 #include "common/exit_code.hpp"
 #include "common/interrupt.hpp"
 #include "common/number_text.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_reader.hpp"
-#include "server/lcm_server_bus.hpp"
 #include "server/server_loop.hpp"
 
 namespace tongue::apps {
@@ -248,7 +248,7 @@ int run(int argc, char** argv) {
     scene::BuiltScene built = scene::build_scene(scene);
     options->server.output = options->output ? *options->output : scene.output.file;
     const common::InterruptHandlers interrupt;
-    server::LcmServerBus bus(options->url, channels);
+    bus::LcmServerBus bus(options->url, channels);
     server::ServerLoop loop(scene, std::move(built), bus, options->server,
                             [&interrupt] { return interrupt.raised(); });
     const std::string controllers =

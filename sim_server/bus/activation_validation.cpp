@@ -8,6 +8,8 @@
 #include <system_error>
 #include <utility>
 
+#include "bus/wire_format.hpp"
+
 namespace tongue::bus {
 namespace {
 
@@ -29,23 +31,19 @@ ActivationCheck reject(std::string reason) {
   return check;
 }
 
-// LCM encodes integers big-endian.
-std::uint64_t read_big_endian(const unsigned char* bytes, int count) {
-  std::uint64_t value = 0;
-  for (int i = 0; i < count; ++i) value = (value << 8) | bytes[i];
-  return value;
-}
-
 }  // namespace
 
-ActivationCheck check_activation(const tongue_lcm::lcmt_tongue_activation& msg,
-                                 const std::vector<std::string>& muscle_names,
-                                 const std::vector<double>& current_levels) {
-  if (current_levels.size() != muscle_names.size()) {
-    throw std::invalid_argument("check_activation: " + std::to_string(current_levels.size()) +
-                                " current levels for " + std::to_string(muscle_names.size()) +
-                                " muscles");
+void ActivationCheck::merge_into(Eigen::VectorXd& held) const {
+  for (std::size_t i = 0; i < named.size(); ++i) {
+    if (named[i] >= static_cast<std::size_t>(held.size()))
+      throw std::invalid_argument("ActivationCheck::merge_into: muscle " +
+                                  std::to_string(named[i]) + " of " + std::to_string(held.size()));
+    held[static_cast<Eigen::Index>(named[i])] = levels[i];
   }
+}
+
+ActivationCheck check_activation(const tongue_lcm::lcmt_tongue_activation& msg,
+                                 const std::vector<std::string>& muscle_names) {
   const std::string count = "num_muscles = " + std::to_string(msg.num_muscles);
   if (msg.num_muscles < 0) return reject(count + " is negative");
   const auto n = static_cast<std::size_t>(msg.num_muscles);
@@ -82,22 +80,21 @@ ActivationCheck check_activation(const tongue_lcm::lcmt_tongue_activation& msg,
 
   ActivationCheck check;
   check.accepted = true;
-  check.levels = current_levels;
-  for (std::size_t i = 0; i < n; ++i) check.levels[muscle_of[i]] = msg.levels[i];
   check.named = std::move(muscle_of);
+  check.levels = msg.levels;
   return check;
 }
 
 bool decode_activation(const void* data, int size, tongue_lcm::lcmt_tongue_activation& out,
                        std::string& reason) {
   // Layout (LCM, big-endian): fingerprint int64, utime int64, step int64, num_muscles int32,
-  // num_muscles strings (int32 length including the terminating NUL, then the bytes), then
-  // num_muscles doubles.
+  // num_muscles strings, then num_muscles doubles.
   constexpr int kHeader = 8 + 8 + 8 + 4;
   constexpr int kMinStringBytes = 4 + 1;
   constexpr int kDoubleBytes = 8;
   const std::string what = "lcmt_tongue_activation: ";
-  if (size < 0 || (data == nullptr && size > 0)) {
+  WireReader in(data, size);
+  if (!in.valid()) {
     reason = what + "no data (size " + std::to_string(size) + ")";
     return false;
   }
@@ -106,13 +103,12 @@ bool decode_activation(const void* data, int size, tongue_lcm::lcmt_tongue_activ
              std::to_string(kHeader) + "-byte header";
     return false;
   }
-  const auto* bytes = static_cast<const unsigned char*>(data);
-  const auto fingerprint = static_cast<std::int64_t>(read_big_endian(bytes, 8));
-  if (fingerprint != tongue_lcm::lcmt_tongue_activation::getHash()) {
+  if (in.int64() != tongue_lcm::lcmt_tongue_activation::getHash()) {
     reason = what + "fingerprint does not match: the bytes are another type or garbage";
     return false;
   }
-  const auto num_muscles = static_cast<std::int32_t>(read_big_endian(bytes + 24, 4));
+  in.skip(8 + 8);  // utime and step: check_activation judges the step
+  const std::int32_t num_muscles = in.int32();
   const std::string count = "num_muscles = " + std::to_string(num_muscles);
   if (num_muscles < 0) {
     reason = what + count + " is negative";
@@ -120,47 +116,28 @@ bool decode_activation(const void* data, int size, tongue_lcm::lcmt_tongue_activ
   }
   // Bound the counts by the bytes present before anything is allocated (64-bit arithmetic:
   // num_muscles * 13 can exceed int).
-  const std::int64_t left = size - kHeader;
   const std::int64_t needed =
       static_cast<std::int64_t>(num_muscles) * (kMinStringBytes + kDoubleBytes);
-  if (needed > left) {
+  if (needed > in.left()) {
     reason = what + count + " needs at least " + std::to_string(needed) +
-             " bytes, the message has " + std::to_string(left) + " after the header (truncated?)";
+             " bytes, the message has " + std::to_string(in.left()) +
+             " after the header (truncated?)";
     return false;
   }
-  std::int64_t pos = kHeader;
   for (std::int32_t i = 0; i < num_muscles; ++i) {
-    const std::string field = "names[" + std::to_string(i) + "]";
-    if (size - pos < 4) {
-      reason = what + field + " is cut off (truncated)";
+    if (!in.string("names[" + std::to_string(i) + "]", reason)) {
+      reason = what + reason;
       return false;
     }
-    const auto length = static_cast<std::int32_t>(read_big_endian(bytes + pos, 4));
-    pos += 4;
-    if (length < 1) {
-      reason = what + field + " has string length " + std::to_string(length) +
-               " (at least 1, for the terminating NUL)";
-      return false;
-    }
-    if (length > size - pos) {
-      reason = what + field + " has string length " + std::to_string(length) + ", only " +
-               std::to_string(size - pos) + " bytes left (truncated?)";
-      return false;
-    }
-    if (bytes[pos + length - 1] != 0) {
-      reason = what + field + " is not NUL-terminated";
-      return false;
-    }
-    pos += length;
   }
   const std::int64_t level_bytes = static_cast<std::int64_t>(num_muscles) * kDoubleBytes;
-  if (size - pos < level_bytes) {
+  if (in.left() < level_bytes) {
     reason = what + "levels is cut off: " + std::to_string(level_bytes) + " bytes needed, " +
-             std::to_string(size - pos) + " left (truncated)";
+             std::to_string(in.left()) + " left (truncated)";
     return false;
   }
-  if (size - pos > level_bytes) {
-    reason = what + std::to_string(size - pos - level_bytes) + " trailing bytes after the message";
+  if (in.left() > level_bytes) {
+    reason = what + std::to_string(in.left() - level_bytes) + " trailing bytes after the message";
     return false;
   }
   try {

@@ -6,30 +6,34 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Core>
+
 #include "bus/messages.hpp"
 
 namespace tongue::bus {
 
+// A checked message: which muscles it sets, and to what. Only the bus checks levels; whoever
+// holds the activations merges an accepted check into them with merge_into.
 struct ActivationCheck {
   bool accepted = false;
-  // The full level vector by muscle index (the model's order) to apply; only when accepted.
-  std::vector<double> levels;
-  // The model indices of the muscles the message names, in the message's order; only when
-  // accepted (lock-step with several controllers merges messages by these).
+  // The model indices of the muscles the message names, in the message's order, each once;
+  // only when accepted (lock-step with several controllers merges messages by these).
   std::vector<std::size_t> named;
+  // levels[i] in [0, 1] is the level of muscle named[i]; only when accepted.
+  std::vector<double> levels;
   // Why the message was rejected, naming the field and its value; empty when accepted.
   std::string reason;
+
+  // Sets the named muscles' entries of held (by model muscle) to their levels; the others keep
+  // theirs. Throws std::invalid_argument when a named index is outside held.
+  void merge_into(Eigen::VectorXd& held) const;
 };
 
 // Checks msg against the model's muscles. Rejects it when num_muscles is negative or differs from
 // the size of names or levels, step is below -1, a name is not in muscle_names or appears twice,
-// or a level is NaN, infinite or outside [0, 1]. When accepted, levels holds current_levels with
-// the named muscles replaced: a message naming only some muscles keeps the others as they are.
-// Throws std::invalid_argument when current_levels and muscle_names differ in size (a caller
-// error, not a bad message).
+// or a level is NaN, infinite or outside [0, 1].
 ActivationCheck check_activation(const tongue_lcm::lcmt_tongue_activation& msg,
-                                 const std::vector<std::string>& muscle_names,
-                                 const std::vector<double>& current_levels);
+                                 const std::vector<std::string>& muscle_names);
 
 // Decodes raw bytes received on the activation channel (an lcm::ReceiveBuffer's data and
 // data_size) into out. Returns false, with reason saying what is wrong, for bytes that are not a

@@ -12,7 +12,7 @@ ActivationRound::ActivationRound(int expected) : expected_(expected) {
 }
 
 void ActivationRound::start(const fem::Vector& held) {
-  levels_ = held;
+  held_ = levels_ = held;
   set_.assign(static_cast<std::size_t>(held.size()), false);
   received_ = 0;
 }
@@ -24,13 +24,11 @@ std::optional<std::size_t> ActivationRound::already_set(
   return std::nullopt;
 }
 
-void ActivationRound::add(const std::vector<std::size_t>& named,
-                          const std::vector<double>& levels) {
+void ActivationRound::add(const bus::ActivationCheck& accepted) {
   if (complete()) throw std::logic_error("ActivationRound::add: the round is already complete");
-  if (levels.size() != set_.size())
-    throw std::logic_error("ActivationRound::add: " + std::to_string(levels.size()) +
-                           " levels for " + std::to_string(set_.size()) + " muscles");
-  for (const std::size_t m : named) {
+  if (!accepted.accepted || accepted.levels.size() != accepted.named.size())
+    throw std::logic_error("ActivationRound::add: not an accepted message");
+  for (const std::size_t m : accepted.named) {
     if (m >= set_.size())
       throw std::logic_error("ActivationRound::add: muscle index " + std::to_string(m) +
                              " out of range");
@@ -38,10 +36,8 @@ void ActivationRound::add(const std::vector<std::size_t>& named,
       throw std::logic_error("ActivationRound::add: muscle " + std::to_string(m) +
                              " is already set in this round");
   }
-  for (const std::size_t m : named) {
-    set_[m] = true;
-    levels_[static_cast<Eigen::Index>(m)] = levels[m];
-  }
+  accepted.merge_into(levels_);
+  for (const std::size_t m : accepted.named) set_[m] = true;
   ++received_;
 }
 

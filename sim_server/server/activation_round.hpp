@@ -8,6 +8,7 @@
 #include <optional>
 #include <vector>
 
+#include "bus/activation_validation.hpp"
 #include "fem/types.hpp"
 
 namespace tongue::server {
@@ -23,21 +24,23 @@ class ActivationRound {
   // The first muscle (model index) of named that this round has already set, or nullopt.
   std::optional<std::size_t> already_set(const std::vector<std::size_t>& named) const;
 
-  // Adds an accepted message: each muscle in named (model indices) takes its level from levels
-  // (indexed by model muscle, e.g. bus::ActivationCheck::levels). Throws std::logic_error when
-  // the round is complete, a muscle is already set or out of range (the caller checks first).
-  void add(const std::vector<std::size_t>& named, const std::vector<double>& levels);
+  // Adds an accepted message: each muscle it names takes its level. Throws std::logic_error
+  // when the round is complete, or a muscle is already set or out of range (the caller checks
+  // first).
+  void add(const bus::ActivationCheck& accepted);
 
   int expected() const { return expected_; }
   int received() const { return received_; }
   bool complete() const { return received_ == expected_; }
   // The held levels with every muscle named so far replaced.
   const fem::Vector& levels() const { return levels_; }
+  // The levels the round started from.
+  const fem::Vector& held() const { return held_; }
 
  private:
   int expected_;
   int received_ = 0;
-  fem::Vector levels_;
+  fem::Vector held_, levels_;
   std::vector<bool> set_;  // by model muscle: named by a message of this round
 };
 

@@ -13,7 +13,24 @@ namespace tongue::bus {
 namespace {
 
 const std::vector<std::string> kMuscles = {"GGp_left", "GGp_right", "SG_left", "SL"};
-const std::vector<double> kCurrent = {0.1, 0.2, 0.3, 0.4};
+
+// The levels held before the message, by model muscle.
+Eigen::VectorXd current() {
+  Eigen::VectorXd v(4);
+  v << 0.1, 0.2, 0.3, 0.4;
+  return v;
+}
+
+// current() with the accepted check merged in.
+Eigen::VectorXd merged(const ActivationCheck& check) {
+  Eigen::VectorXd held = current();
+  check.merge_into(held);
+  return held;
+}
+
+Eigen::VectorXd vector(const std::vector<double>& values) {
+  return Eigen::Map<const Eigen::VectorXd>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
 
 tongue_lcm::lcmt_tongue_activation message(const std::vector<std::string>& names,
                                            const std::vector<double>& levels, int64_t step = 1) {
@@ -29,7 +46,7 @@ tongue_lcm::lcmt_tongue_activation message(const std::vector<std::string>& names
 // Expects msg to be rejected with a reason that contains every one of the parts.
 void expect_rejected(const tongue_lcm::lcmt_tongue_activation& msg,
                      const std::vector<std::string>& parts) {
-  const ActivationCheck check = check_activation(msg, kMuscles, kCurrent);
+  const ActivationCheck check = check_activation(msg, kMuscles);
   EXPECT_FALSE(check.accepted);
   EXPECT_TRUE(check.levels.empty());
   EXPECT_TRUE(check.named.empty());
@@ -40,33 +57,35 @@ void expect_rejected(const tongue_lcm::lcmt_tongue_activation& msg,
 }
 
 TEST(CheckActivation, AcceptsAFullMessageInTheModelsOrder) {
-  const auto check =
-      check_activation(message({"SL", "SG_left", "GGp_right", "GGp_left"}, {1.0, 0.0, 0.5, 0.25}),
-                       kMuscles, kCurrent);
+  const auto check = check_activation(
+      message({"SL", "SG_left", "GGp_right", "GGp_left"}, {1.0, 0.0, 0.5, 0.25}), kMuscles);
   ASSERT_TRUE(check.accepted) << check.reason;
   EXPECT_TRUE(check.reason.empty());
-  EXPECT_EQ(check.levels, (std::vector<double>{0.25, 0.5, 0.0, 1.0}));
-  EXPECT_EQ(check.named, (std::vector<std::size_t>{3, 2, 1, 0}));  // message order
+  EXPECT_EQ(check.levels, (std::vector<double>{1.0, 0.0, 0.5, 0.25}));  // message order
+  EXPECT_EQ(check.named, (std::vector<std::size_t>{3, 2, 1, 0}));
+  EXPECT_EQ(merged(check), vector({0.25, 0.5, 0.0, 1.0}));  // the model's order
 }
 
 TEST(CheckActivation, PartialMessageKeepsTheOtherLevels) {
-  const auto check = check_activation(message({"SG_left"}, {0.9}), kMuscles, kCurrent);
+  const auto check = check_activation(message({"SG_left"}, {0.9}), kMuscles);
   ASSERT_TRUE(check.accepted) << check.reason;
-  EXPECT_EQ(check.levels, (std::vector<double>{0.1, 0.2, 0.9, 0.4}));
+  EXPECT_EQ(check.levels, (std::vector<double>{0.9}));
   EXPECT_EQ(check.named, (std::vector<std::size_t>{2}));
+  EXPECT_EQ(merged(check), vector({0.1, 0.2, 0.9, 0.4}));
 }
 
 TEST(CheckActivation, EmptyMessageKeepsAllLevels) {
-  const auto check = check_activation(message({}, {}, -1), kMuscles, kCurrent);
+  const auto check = check_activation(message({}, {}, -1), kMuscles);
   ASSERT_TRUE(check.accepted) << check.reason;
-  EXPECT_EQ(check.levels, kCurrent);
+  EXPECT_TRUE(check.levels.empty());
   EXPECT_TRUE(check.named.empty());
+  EXPECT_EQ(merged(check), current());
 }
 
 TEST(CheckActivation, AcceptsTheBoundsZeroAndOne) {
-  const auto check = check_activation(message({"SL", "GGp_left"}, {0.0, 1.0}), kMuscles, kCurrent);
+  const auto check = check_activation(message({"SL", "GGp_left"}, {0.0, 1.0}), kMuscles);
   ASSERT_TRUE(check.accepted) << check.reason;
-  EXPECT_EQ(check.levels, (std::vector<double>{1.0, 0.2, 0.3, 0.0}));
+  EXPECT_EQ(merged(check), vector({1.0, 0.2, 0.3, 0.0}));
 }
 
 TEST(CheckActivation, RejectsNegativeNumMuscles) {
@@ -122,16 +141,19 @@ TEST(CheckActivation, RejectsStepBelowMinusOne) {
 
 TEST(CheckActivation, OneBadEntryRejectsTheWholeMessage) {
   // The good entries before the bad one are not applied: no half update.
-  const auto check = check_activation(message({"GGp_left", "GGp_right", "SL"}, {0.9, 0.9, 2.0}),
-                                      kMuscles, kCurrent);
+  const auto check =
+      check_activation(message({"GGp_left", "GGp_right", "SL"}, {0.9, 0.9, 2.0}), kMuscles);
   EXPECT_FALSE(check.accepted);
   EXPECT_TRUE(check.levels.empty());
   EXPECT_NE(check.reason.find("levels[2]"), std::string::npos) << check.reason;
 }
 
-TEST(CheckActivation, CurrentLevelsOfTheWrongSizeThrow) {
-  EXPECT_THROW(check_activation(message({"SL"}, {0.5}), kMuscles, {0.1, 0.2}),
-               std::invalid_argument);
+TEST(CheckActivation, MergingIntoTooFewLevelsThrows) {
+  const auto check = check_activation(message({"SL"}, {0.5}), kMuscles);
+  ASSERT_TRUE(check.accepted) << check.reason;
+  Eigen::VectorXd two(2);
+  two << 0.1, 0.2;
+  EXPECT_THROW(check.merge_into(two), std::invalid_argument);
 }
 
 }  // namespace

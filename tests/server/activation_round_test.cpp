@@ -17,19 +17,20 @@ fem::Vector held() {
   return v;
 }
 
-// A full level vector as bus::check_activation gives it: held with the named muscles replaced.
-std::vector<double> checked(const std::vector<std::size_t>& named, double level) {
-  const fem::Vector h = held();
-  std::vector<double> levels(h.data(), h.data() + h.size());
-  for (const std::size_t m : named) levels[m] = level;
-  return levels;
+// An accepted message as bus::check_activation gives it: the named muscles, each at level.
+bus::ActivationCheck checked(const std::vector<std::size_t>& named, double level) {
+  bus::ActivationCheck check;
+  check.accepted = true;
+  check.named = named;
+  check.levels.assign(named.size(), level);
+  return check;
 }
 
 TEST(ActivationRound, OneExpectedMessageIsThatMessageOnTheHeldLevels) {
   ActivationRound round(1);
   round.start(held());
   EXPECT_FALSE(round.complete());
-  round.add({2}, checked({2}, 0.9));
+  round.add(checked({2}, 0.9));
   EXPECT_TRUE(round.complete());
   EXPECT_EQ(round.received(), 1);
   fem::Vector expected = held();
@@ -40,12 +41,12 @@ TEST(ActivationRound, OneExpectedMessageIsThatMessageOnTheHeldLevels) {
 TEST(ActivationRound, MergesMessagesNamingDifferentMusclesAndKeepsTheUnnamed) {
   ActivationRound round(3);
   round.start(held());
-  round.add({0, 3}, checked({0, 3}, 0.7));
+  round.add(checked({0, 3}, 0.7));
   EXPECT_FALSE(round.complete());
-  round.add({}, checked({}, 0.0));  // a controller with nothing to change still counts
+  round.add(checked({}, 0.0));  // a controller with nothing to change still counts
   EXPECT_FALSE(round.complete());
   EXPECT_EQ(round.received(), 2);
-  round.add({1}, checked({1}, 0.05));
+  round.add(checked({1}, 0.05));
   ASSERT_TRUE(round.complete());
   fem::Vector expected(4);
   expected << 0.7, 0.05, 0.3, 0.7;  // muscle 2, named by nobody, keeps its held level
@@ -55,10 +56,10 @@ TEST(ActivationRound, MergesMessagesNamingDifferentMusclesAndKeepsTheUnnamed) {
 TEST(ActivationRound, FindsAMuscleAnEarlierMessageSet) {
   ActivationRound round(2);
   round.start(held());
-  round.add({1, 2}, checked({1, 2}, 0.5));
+  round.add(checked({1, 2}, 0.5));
   EXPECT_EQ(round.already_set({0, 3}), std::nullopt);
   EXPECT_EQ(round.already_set({3, 2}), std::optional<std::size_t>(2));
-  EXPECT_THROW(round.add({2}, checked({2}, 0.6)), std::logic_error);
+  EXPECT_THROW(round.add(checked({2}, 0.6)), std::logic_error);
   EXPECT_EQ(round.received(), 1);  // the refused message changed nothing
   EXPECT_EQ(round.levels()[2], 0.5);
 }
@@ -66,7 +67,7 @@ TEST(ActivationRound, FindsAMuscleAnEarlierMessageSet) {
 TEST(ActivationRound, StartClearsTheRound) {
   ActivationRound round(2);
   round.start(held());
-  round.add({0}, checked({0}, 1.0));
+  round.add(checked({0}, 1.0));
   fem::Vector next = fem::Vector::Zero(4);
   round.start(next);
   EXPECT_EQ(round.received(), 0);
@@ -77,8 +78,8 @@ TEST(ActivationRound, StartClearsTheRound) {
 TEST(ActivationRound, ACompleteRoundTakesNoMore) {
   ActivationRound round(1);
   round.start(held());
-  round.add({0}, checked({0}, 1.0));
-  EXPECT_THROW(round.add({1}, checked({1}, 1.0)), std::logic_error);
+  round.add(checked({0}, 1.0));
+  EXPECT_THROW(round.add(checked({1}, 1.0)), std::logic_error);
 }
 
 TEST(ActivationRound, NeedsAtLeastOneMessage) {

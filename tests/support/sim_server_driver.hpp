@@ -1,8 +1,8 @@
 #pragma once
 // Helpers for driving the real sim_server executable (and the LCM tools lcm-logger and
 // lcm-logplayer) over a real LCM bus (udpm on the loopback) from end-to-end tests and benchmarks:
-// the bus URL of a port, the small box scene, a child process guard and the controller's side of
-// the bus.
+// the bus URL of a port, a child process guard and the controller's side of the bus (the box
+// scenes come with it, from box_scenes.hpp).
 #include <fcntl.h>
 #include <signal.h>
 #include <spawn.h>
@@ -25,6 +25,7 @@
 
 #include "bus/channels.hpp"
 #include "bus/messages.hpp"
+#include "support/box_scenes.hpp"
 #include "support/run_command.hpp"
 
 extern char** environ;
@@ -38,41 +39,6 @@ inline std::string bus_url(int port, std::optional<int> recv_buf_size = std::nul
   if (recv_buf_size) url += "&recv_buf_size=" + std::to_string(*recv_buf_size);
   return url;
 }
-
-// A 40 x 10 x 10 mm block, 4 x 1 x 1 elements (20 nodes), clamped at x = 0, under gravity, with
-// one listed muscle along the free end; dynamic, dt 2 ms: a step takes well under a millisecond.
-inline constexpr const char* kBoxScene = R"(
-mesh:
-  box: {size: [0.04, 0.01, 0.01], divisions: [4, 1, 1]}
-material:
-  type: mooney_rivlin5
-  density: 1000
-constraints:
-  - {set: x_min, components: [x, y, z]}
-gravity: [0, -9.81, 0]
-muscles:
-  - {name: flexor, max_force: 0.01, elements: [2, 3], fibres: [{nodes: [2, 3, 4]}]}
-damping: {beta: 0.028}
-analysis: {type: dynamic, duration: 0.02, dt: 0.002}
-)";
-
-// kBoxScene with a second muscle along the top edge (nodes 7, 8, 9: y = 10 mm, z = 0), so that
-// two controllers can each drive their own muscle: "flexor" (bottom) and "extensor" (top).
-inline constexpr const char* kTwoMuscleBoxScene = R"(
-mesh:
-  box: {size: [0.04, 0.01, 0.01], divisions: [4, 1, 1]}
-material:
-  type: mooney_rivlin5
-  density: 1000
-constraints:
-  - {set: x_min, components: [x, y, z]}
-gravity: [0, -9.81, 0]
-muscles:
-  - {name: flexor, max_force: 0.01, elements: [2, 3], fibres: [{nodes: [2, 3, 4]}]}
-  - {name: extensor, max_force: 0.01, elements: [2, 3], fibres: [{nodes: [7, 8, 9]}]}
-damping: {beta: 0.028}
-analysis: {type: dynamic, duration: 0.02, dt: 0.002}
-)";
 
 inline constexpr int kDefaultWaitMs = 5000;  // longest wait for one expected message
 

@@ -7,7 +7,7 @@
 
 #include "bus/messages.hpp"
 
-namespace tongue::server {
+namespace tongue::bus {
 
 struct IncomingMessage {
   enum class Channel { activation, command };
@@ -25,4 +25,4 @@ class ServerBus {
   virtual std::vector<IncomingMessage> receive(int timeout_ms) = 0;
 };
 
-}  // namespace tongue::server
+}  // namespace tongue::bus

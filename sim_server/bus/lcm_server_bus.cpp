@@ -1,10 +1,10 @@
-#include "server/lcm_server_bus.hpp"
+#include "bus/lcm_server_bus.hpp"
 
 #include <cerrno>
 #include <iterator>
 #include <stdexcept>
 
-namespace tongue::server {
+namespace tongue::bus {
 namespace {
 
 // Messages LCM may hold per subscription between two reads of the loop. LCM's default (30) drops
@@ -15,7 +15,7 @@ constexpr int kQueueCapacity = 100000;
 
 }  // namespace
 
-LcmServerBus::LcmServerBus(const std::string& url, const bus::Channels& channels)
+LcmServerBus::LcmServerBus(const std::string& url, const Channels& channels)
     : lcm_(url), channels_(channels) {
   if (!lcm_.good()) throw std::runtime_error("cannot open the LCM bus at '" + url + "'");
   for (auto* subscriber : {&activation_, &command_}) {
@@ -62,4 +62,4 @@ std::vector<IncomingMessage> LcmServerBus::receive(int timeout_ms) {
   return out;
 }
 
-}  // namespace tongue::server
+}  // namespace tongue::bus

@@ -1,6 +1,6 @@
 #pragma once
-// ServerBus on an lcm::LCM: raw subscriptions on the activation and command channels (bytes are
-// decoded and checked by the loop, never by lcm-gen's decoder on untrusted input), publications
+// ServerBus on an lcm::LCM: raw subscriptions on the activation and command channels (their bytes
+// go to decode_activation and decode_command, never straight to lcm-gen's decoder), publications
 // on the state and model channels.
 #include <deque>
 #include <string>
@@ -9,14 +9,14 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "bus/channels.hpp"
-#include "server/server_bus.hpp"
+#include "bus/server_bus.hpp"
 
-namespace tongue::server {
+namespace tongue::bus {
 
 class LcmServerBus final : public ServerBus {
  public:
   // Throws std::runtime_error naming the URL when LCM cannot be initialized on it.
-  LcmServerBus(const std::string& url, const bus::Channels& channels);
+  LcmServerBus(const std::string& url, const Channels& channels);
   LcmServerBus(const LcmServerBus&) = delete;
   LcmServerBus& operator=(const LcmServerBus&) = delete;
 
@@ -33,10 +33,10 @@ class LcmServerBus final : public ServerBus {
                          Subscriber* subscriber);
 
   lcm::LCM lcm_;
-  bus::Channels channels_;
+  Channels channels_;
   Subscriber activation_{this, IncomingMessage::Channel::activation};
   Subscriber command_{this, IncomingMessage::Channel::command};
   std::deque<IncomingMessage> queue_;
 };
 
-}  // namespace tongue::server
+}  // namespace tongue::bus

@@ -1,0 +1,40 @@
+#pragma once
+// Reading LCM's wire format by hand, bounds-checked, for the checks that run on untrusted bytes
+// before lcm-gen's decoders do: integers are big-endian, a string is an int32 length that
+// counts the terminating NUL, then that many bytes.
+#include <cstdint>
+#include <string>
+
+namespace tongue::bus {
+
+class WireReader {
+ public:
+  // The size bytes at data; see valid().
+  WireReader(const void* data, int size);
+
+  // False when size is negative, or data is null with size > 0: nothing can be read.
+  bool valid() const { return valid_; }
+  // Bytes not yet read.
+  std::int64_t left() const { return valid_ ? size_ - pos_ : 0; }
+
+  // The next big-endian integer. Throw std::logic_error when fewer bytes are left (the caller
+  // checks left() first: the message's fixed part is checked once, not field by field).
+  std::int64_t int64();
+  std::int32_t int32();
+  // Steps over count bytes; throws std::logic_error when fewer are left.
+  void skip(std::int64_t count);
+
+  // Steps over one string. Returns false, with reason naming field ("names[2]", "command"), when
+  // its length is cut off, below 1, beyond the bytes left, or its last byte is not the NUL.
+  bool string(const std::string& field, std::string& reason);
+
+ private:
+  std::uint64_t big_endian(int count);
+
+  const unsigned char* bytes_;
+  std::int64_t size_;
+  std::int64_t pos_ = 0;
+  bool valid_;
+};
+
+}  // namespace tongue::bus

@@ -1,0 +1,38 @@
+#pragma once
+// How a server runs (its mode, silence rule, published nodes, limits and run file) and how it
+// ended (the process exit status); the loop's behaviour under each is in server_loop.hpp.
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include "server/node_selection.hpp"
+
+namespace tongue::server {
+
+enum class Mode { lockstep, fast, realtime };
+enum class OnSilence { hold, stop, decay };  // decay: real-time mode only
+
+struct ServerOptions {
+  Mode mode = Mode::lockstep;
+  int timeout_ms = 1000;  // lock-step: silence before a report (and a stop with OnSilence::stop)
+  // Lock-step: accepted activation messages tagged k + 1 that make step k + 1 (one per
+  // controller, each naming its own muscles). Other modes: 1.
+  int controllers = 1;
+  OnSilence on_silence = OnSilence::hold;
+  double silence_s = 0.5;  // real-time: silence before hold / decay / stop [s]
+  Nodes nodes = Nodes::all;
+  int publish_every = 1;  // fast and real-time: publish the state every this many steps
+  std::optional<std::int64_t> max_steps;  // end (exit 0) once this step is reached
+  std::string output;                     // run file; empty: none
+};
+
+// How the loop ended; the process exit status.
+enum class ExitStatus : int {
+  ok = 0,             // shutdown command, or max_steps reached
+  error = 1,          // an exception (e.g. the run file cannot be written)
+  not_converged = 2,  // a step (or the settling) failed to converge even after cuts
+  silence = 3,        // on_silence stop: no activation within timeout_ms (real-time: silence_s)
+  interrupted = 130,  // SIGINT / SIGTERM (the stop predicate)
+};
+
+}  // namespace tongue::server

@@ -1,0 +1,76 @@
+#include "server/state_message.hpp"
+
+#include "model/default_tongue.hpp"
+
+namespace tongue::server {
+namespace {
+
+std::vector<double> values(const fem::Vector& v) {
+  return std::vector<double>(v.data(), v.data() + v.size());
+}
+
+}  // namespace
+
+tongue_lcm::lcmt_tongue_model model_message(const scene_run::SceneRun& run, std::int64_t utime) {
+  const scene::BuiltScene& built = run.built();
+  const fem::Mesh& mesh = built.solid->mesh();
+  tongue_lcm::lcmt_tongue_model msg;
+  msg.utime = utime;
+  msg.num_nodes = mesh.num_nodes();
+  msg.rest_positions = values(built.solid->rest_positions());
+  msg.num_rest_positions = static_cast<std::int32_t>(msg.rest_positions.size());
+  msg.num_elements = mesh.num_elements();
+  for (const fem::Hex8& e : mesh.elements)
+    msg.elements.insert(msg.elements.end(), e.begin(), e.end());
+  msg.num_element_nodes = static_cast<std::int32_t>(msg.elements.size());
+  if (built.muscles) {
+    for (const auto& m : built.muscles->muscles()) {
+      msg.muscle_names.push_back(m.name);
+      msg.muscle_max_forces.push_back(m.max_force);
+    }
+  }
+  msg.num_muscles = static_cast<std::int32_t>(msg.muscle_names.size());
+  for (const std::string& name : model::landmark_names()) {
+    const auto it = mesh.node_sets.find(name);
+    if (it == mesh.node_sets.end() || it->second.empty()) continue;
+    msg.landmark_names.push_back(name);
+    msg.landmark_nodes.push_back(it->second.front());
+  }
+  msg.num_landmarks = static_cast<std::int32_t>(msg.landmark_names.size());
+  msg.dt = run.scene().analysis.dt;
+  msg.scene = run.scene().text;
+  return msg;
+}
+
+tongue_lcm::lcmt_tongue_state state_message(const scene_run::SceneRun& run,
+                                            const std::vector<int>& nodes,
+                                            const scene_run::StepResult& last,
+                                            const StateNotes& notes) {
+  tongue_lcm::lcmt_tongue_state msg;
+  msg.utime = notes.utime;
+  msg.step = run.step_count();
+  msg.time = run.time();
+  msg.num_nodes = static_cast<std::int32_t>(nodes.size());
+  msg.node_indices = nodes;
+  const fem::Vector& rest = run.built().solid->rest_positions();
+  const fem::Vector& u = run.displacement();
+  msg.positions.reserve(3 * nodes.size());
+  for (const int i : nodes)
+    for (int c = 0; c < 3; ++c) msg.positions.push_back(rest[3 * i + c] + u[3 * i + c]);
+  msg.num_positions = static_cast<std::int32_t>(msg.positions.size());
+  msg.num_muscles = static_cast<std::int32_t>(last.muscles.lengths.size());
+  msg.muscle_lengths = values(last.muscles.lengths);
+  msg.muscle_velocities = values(last.muscles.velocities);
+  msg.activations = values(last.muscles.activations);
+  msg.newton_iterations = last.report.iterations;
+  msg.residual_norm = last.report.final_residual;
+  msg.step_wall_time = last.report.wall_seconds;
+  msg.step_cuts = last.report.cuts;
+  msg.converged = notes.converged;
+  msg.status = notes.status;
+  msg.rejected_messages = notes.rejected_messages;
+  msg.overruns = notes.overruns;
+  return msg;
+}
+
+}  // namespace tongue::server
