@@ -31,8 +31,8 @@ Start it before the server (it answers states from step 0 on; a server already w
 step it never saw is not answered). Several instances may drive one server started with
 --controllers N, each naming its own muscles.
 
-Exit status: 0 state N reached; 1 a muscle is not in the model or LCM failed; 2 a step failed
-to converge, or a bad command line; 4 the server fell silent.
+Exit status: 0 state N reached; 1 a bad command line, a muscle not in the model, or LCM
+failed; 2 a step failed to converge; 4 the server fell silent.
 Run it with the generated bindings on the Lua path: the build's wrapper
 build/controllers/lua/step_controller does that.
 ]==]
@@ -43,8 +43,8 @@ local tongue_lcm = require("tongue_lcm")
 local PROG = "step_controller"
 -- The same as kDefaultLcmUrl in sim_server/bus/channels.hpp (the C++ definition): keep them equal.
 local DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
--- The exit codes of sim_server/common/exit_code.hpp (docs/exit_codes.md); a bad command line
--- is 2 here, not 1 (its tests pin that).
+-- The exit codes of sim_server/common/exit_code.hpp (docs/exit_codes.md).
+local EXIT_ERROR = 1
 local EXIT_NOT_CONVERGED = 2
 local EXIT_TIMEOUT = 4
 local SLICE_MS = 50             -- longest single wait on the bus
@@ -56,7 +56,7 @@ local function fail(status, text)
 end
 
 local function usage_error(text)
-  fail(2, text .. "\nusage: step_controller.lua [--lcm-url URL] [--prefix TONGUE_] " ..
+  fail(EXIT_ERROR, text .. "\nusage: step_controller.lua [--lcm-url URL] [--prefix TONGUE_] " ..
           "[--max-steps N] [--timeout-ms MS] MUSCLE=LEVEL[@START[:END]] ...")
 end
 
@@ -173,7 +173,7 @@ local function main(args)
   }
 
   local ok, bus = pcall(lcm.lcm.new, options.url)
-  if not ok then fail(1, "cannot open the LCM bus at '" .. options.url .. "': " .. bus) end
+  if not ok then fail(EXIT_ERROR, "cannot open the LCM bus at '" .. options.url .. "': " .. bus) end
   local model
   local states = {}  -- received, not yet answered, in order
   bus:subscribe(channel.model, function(_, data)
@@ -219,7 +219,7 @@ local function main(args)
   for _, name in ipairs(model.muscle_names) do known[name] = true end
   for _, name in ipairs(names) do
     if not known[name] then
-      fail(1, string.format("muscle '%s' is not in the model (its muscles: %s)", name,
+      fail(EXIT_ERROR, string.format("muscle '%s' is not in the model (its muscles: %s)", name,
                             table.concat(model.muscle_names, ", ")))
     end
   end

@@ -36,13 +36,6 @@ namespace {
 using common::kExitError;
 const std::string kDefaultUrl{bus::kDefaultLcmUrl};
 
-// The loop's outcome is the process's exit status: its codes are the common ones.
-static_assert(static_cast<int>(server::ExitStatus::ok) == common::kExitOk);
-static_assert(static_cast<int>(server::ExitStatus::error) == common::kExitError);
-static_assert(static_cast<int>(server::ExitStatus::not_converged) == common::kExitNotConverged);
-static_assert(static_cast<int>(server::ExitStatus::silence) == common::kExitSilence);
-static_assert(static_cast<int>(server::ExitStatus::interrupted) == common::kExitInterrupted);
-
 struct Options {
   std::string scene_path;
   std::string url = kDefaultUrl;

@@ -1,25 +1,16 @@
 #include "bus/activation_validation.hpp"
 
-#include <charconv>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <stdexcept>
-#include <system_error>
 #include <utility>
 
 #include "bus/wire_format.hpp"
+#include "common/number_text.hpp"
 
 namespace tongue::bus {
 namespace {
-
-// Shortest text that reads back as the same double ("1.0000001", "nan", "-inf").
-std::string number_text(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  if (result.ec != std::errc()) return "?";
-  return std::string(buffer, result.ptr);
-}
 
 std::string quoted(const std::string& text) {
   return "\"" + text + "\"";
@@ -73,7 +64,7 @@ ActivationCheck check_activation(const tongue_lcm::lcmt_tongue_activation& msg,
 
     const double level = msg.levels[i];
     const std::string value =
-        "levels[" + std::to_string(i) + "] (" + msg.names[i] + ") = " + number_text(level);
+        "levels[" + std::to_string(i) + "] (" + msg.names[i] + ") = " + common::number_text(level);
     if (!std::isfinite(level)) return reject(value + " is not finite");
     if (level < 0.0 || level > 1.0) return reject(value + " is outside [0, 1]");
   }
@@ -140,17 +131,7 @@ bool decode_activation(const void* data, int size, tongue_lcm::lcmt_tongue_activ
     reason = what + std::to_string(in.left() - level_bytes) + " trailing bytes after the message";
     return false;
   }
-  try {
-    if (out.decode(data, 0, size) != size) {
-      reason = what + "lcm decode failed";
-      return false;
-    }
-  } catch (const std::exception& e) {
-    reason = what + "lcm decode failed: " + e.what();
-    return false;
-  }
-  reason.clear();
-  return true;
+  return checked_decode(data, size, out, what, reason);
 }
 
 }  // namespace tongue::bus

@@ -1,6 +1,5 @@
 #include "bus/command.hpp"
 
-#include <exception>
 
 #include "bus/wire_format.hpp"
 
@@ -73,17 +72,7 @@ bool decode_command(const void* data, int size, tongue_lcm::lcmt_tongue_command&
     reason = what + std::to_string(in.left()) + " trailing bytes after the message";
     return false;
   }
-  try {
-    if (out.decode(data, 0, size) != size) {
-      reason = what + "lcm decode failed";
-      return false;
-    }
-  } catch (const std::exception& e) {
-    reason = what + "lcm decode failed: " + e.what();
-    return false;
-  }
-  reason.clear();
-  return true;
+  return checked_decode(data, size, out, what, reason);
 }
 
 }  // namespace tongue::bus

@@ -3,6 +3,7 @@
 // before lcm-gen's decoders do: integers are big-endian, a string is an int32 length that
 // counts the terminating NUL, then that many bytes.
 #include <cstdint>
+#include <exception>
 #include <string>
 
 namespace tongue::bus {
@@ -36,5 +37,24 @@ class WireReader {
   std::int64_t pos_ = 0;
   bool valid_;
 };
+
+// lcm-gen's decode() of a message whose structure the caller has checked with a WireReader: the
+// last step of every decoder here. False, with reason prefixed by what, when decode() still
+// disagrees on the size or throws.
+template <typename Message>
+bool checked_decode(const void* data, int size, Message& out, const std::string& what,
+                    std::string& reason) {
+  try {
+    if (out.decode(data, 0, size) != size) {
+      reason = what + "lcm decode failed";
+      return false;
+    }
+  } catch (const std::exception& e) {
+    reason = what + "lcm decode failed: " + e.what();
+    return false;
+  }
+  reason.clear();
+  return true;
+}
 
 }  // namespace tongue::bus

@@ -80,7 +80,7 @@ ServerLoop::ServerLoop(const scene::Scene& scene, scene::BuiltScene built, bus::
 ServerLoop::~ServerLoop() = default;
 
 ExitStatus ServerLoop::run() {
-  ExitStatus status = ExitStatus::error;
+  ExitStatus status = common::kExitError;
   try {
     status = loop();
   } catch (const std::exception& e) {
@@ -94,7 +94,7 @@ ExitStatus ServerLoop::run() {
       log_->flush();
     } catch (const std::exception& e) {
       std::fprintf(stderr, "sim_server: error: %s\n", e.what());
-      status = ExitStatus::error;
+      status = common::kExitError;
     }
   }
   return status;
@@ -102,21 +102,19 @@ ExitStatus ServerLoop::run() {
 
 std::string ServerLoop::status_text(ExitStatus status) const {
   switch (status) {
-    case ExitStatus::ok:
+    case common::kExitOk:
       return "completed";
-    case ExitStatus::interrupted:
+    case common::kExitInterrupted:
       return "interrupted";
-    case ExitStatus::silence:
+    case common::kExitSilence:
       return "stopped: " + silence_text();
-    case ExitStatus::error:
-    case ExitStatus::not_converged:
-      break;
+    default:  // kExitError, kExitNotConverged (the server never times out waiting: kExitTimeout)
+      return "failed: " + failure_;
   }
-  return "failed: " + failure_;
 }
 
 ExitStatus ServerLoop::loop() {
-  if (!start()) return ExitStatus::not_converged;
+  if (!start()) return common::kExitNotConverged;
   publish_model();
   log_frame();
   publish_state("ok");
@@ -153,11 +151,11 @@ std::optional<ExitStatus> ServerLoop::ending() const {
   if (stop_requested_ && stop_requested_()) {
     std::fprintf(stderr, "sim_server: interrupted at step %lld\n",
                  static_cast<long long>(run_.step_count()));
-    return ExitStatus::interrupted;
+    return common::kExitInterrupted;
   }
-  if (!failure_.empty()) return ExitStatus::not_converged;
-  if (shutdown_) return ExitStatus::ok;
-  if (options_.max_steps && run_.step_count() >= *options_.max_steps) return ExitStatus::ok;
+  if (!failure_.empty()) return common::kExitNotConverged;
+  if (shutdown_) return common::kExitOk;
+  if (options_.max_steps && run_.step_count() >= *options_.max_steps) return common::kExitOk;
   return std::nullopt;
 }
 
@@ -203,7 +201,7 @@ std::optional<ExitStatus> ServerLoop::watch_silence() {
     if (now < deadline_) return std::nullopt;
     std::fprintf(stderr, "sim_server: %s%s\n", lockstep_wait_text().c_str(),
                  options_.on_silence == OnSilence::stop ? ": stopping" : ", holding");
-    if (options_.on_silence == OnSilence::stop) return ExitStatus::silence;
+    if (options_.on_silence == OnSilence::stop) return common::kExitSilence;
     deadline_ = now + options_.timeout_ms * 1e-3;
     return std::nullopt;
   }
@@ -220,7 +218,7 @@ std::optional<ExitStatus> ServerLoop::watch_silence() {
                                                                  : "holding the activation";
     std::fprintf(stderr, "sim_server: %s at step %lld, %s\n", silence_text().c_str(),
                  static_cast<long long>(step), what);
-    if (options_.on_silence == OnSilence::stop) return ExitStatus::silence;
+    if (options_.on_silence == OnSilence::stop) return common::kExitSilence;
     if (options_.on_silence == OnSilence::decay) input_.zero_held();
   }
   return std::nullopt;

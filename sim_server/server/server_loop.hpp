@@ -72,7 +72,7 @@ class ServerLoop {
   std::optional<ExitStatus> ending() const;   // why the loop ends now, if it does
   int wait_ms() const;                        // how long the next receive may wait
   const fem::Vector* due_levels() const;      // the levels of a step due now, or null
-  std::optional<ExitStatus> watch_silence();  // reports silence; ExitStatus::silence: stop
+  std::optional<ExitStatus> watch_silence();  // reports silence; common::kExitSilence: stop
   void anchor_clock();             // real-time: the next step starts now, later ones dt apart
   double step_start_time() const;  // real-time: steady-clock s at which the next step may start
   bool should_publish() const;     // fast and real-time: whether the current state is published

@@ -5,6 +5,7 @@
 #include <optional>
 #include <string>
 
+#include "common/exit_code.hpp"
 #include "server/node_selection.hpp"
 
 namespace tongue::server {
@@ -26,13 +27,10 @@ struct ServerOptions {
   std::string output;                     // run file; empty: none
 };
 
-// How the loop ended; the process exit status.
-enum class ExitStatus : int {
-  ok = 0,             // shutdown command, or max_steps reached
-  error = 1,          // an exception (e.g. the run file cannot be written)
-  not_converged = 2,  // a step (or the settling) failed to converge even after cuts
-  silence = 3,        // on_silence stop: no activation within timeout_ms (real-time: silence_s)
-  interrupted = 130,  // SIGINT / SIGTERM (the stop predicate)
-};
+// How the loop ended, the process exit status (common/exit_code.hpp): kExitOk after shutdown or
+// max_steps, kExitError for an exception (e.g. the run file cannot be written),
+// kExitNotConverged when a step or the settling failed even after cuts, kExitSilence for
+// on_silence stop, kExitInterrupted when stop_requested said so.
+using ExitStatus = common::ExitCode;
 
 }  // namespace tongue::server

@@ -30,7 +30,7 @@ using Channel = bus::IncomingMessage::Channel;
 using testing::FakeServerBus;
 
 constexpr double kDt = 0.002;  // s, the box scenes'
-// A test whose loop has not ended after this long [s] is stopped (ExitStatus::interrupted).
+// A test whose loop has not ended after this long [s] is stopped (common::kExitInterrupted).
 constexpr double kLongestRun = 30.0;
 
 // The bytes of an lcmt_tongue_command whose string has the given length field (NUL included on
@@ -99,7 +99,7 @@ int status(ExitStatus s) {
 
 TEST_F(ServerLoopTest, PublishesTheModelThenStateZero) {
   bus_.send_command("shutdown");
-  ASSERT_EQ(status(run()), status(ExitStatus::ok));
+  ASSERT_EQ(status(run()), status(common::kExitOk));
   EXPECT_EQ(bus_.published.substr(0, 2), "ms");
   ASSERT_EQ(bus_.models.size(), 1u);
   EXPECT_EQ(bus_.models[0].num_nodes, 20);
@@ -119,7 +119,7 @@ TEST_F(ServerLoopTest, LockStepStepsOnTheActivationTaggedTheNextStep) {
   for (std::size_t k = 0; k < levels.size(); ++k)
     bus_.send_activation(static_cast<std::int64_t>(k) + 1, {"flexor"}, {levels[k]});
   bus_.send_command("shutdown");
-  ASSERT_EQ(status(run()), status(ExitStatus::ok));
+  ASSERT_EQ(status(run()), status(common::kExitOk));
   ASSERT_EQ(published_steps(), (std::vector<std::int64_t>{0, 1, 2, 3, 4}));
   // The same as stepping the scene directly with the same levels, bit for bit.
   const auto expected = reference_positions(levels);
@@ -141,7 +141,7 @@ TEST_F(ServerLoopTest, AControllerAnsweringEachStateDrivesTheRun) {
   };
   ServerOptions options;
   options.max_steps = 5;
-  ASSERT_EQ(status(run(options)), status(ExitStatus::ok));
+  ASSERT_EQ(status(run(options)), status(common::kExitOk));
   EXPECT_EQ(published_steps(), (std::vector<std::int64_t>{0, 1, 2, 3, 4, 5}));
   EXPECT_EQ(bus_.states.back().activations, (std::vector<double>{0.4}));
 }
@@ -153,7 +153,7 @@ TEST_F(ServerLoopTest, StaleAndFutureActivationsAreRejectedAndCounted) {
   bus_.send_activation(5, {"flexor"}, {0.9});  // future
   bus_.send_activation(2, {"flexor"}, {0.25});
   bus_.send_command("shutdown");
-  ASSERT_EQ(status(run()), status(ExitStatus::ok));
+  ASSERT_EQ(status(run()), status(common::kExitOk));
   ASSERT_EQ(published_steps(), (std::vector<std::int64_t>{0, 1, 2}));
   EXPECT_EQ(bus_.states[1].activations, (std::vector<double>{0.5}));
   EXPECT_EQ(bus_.states[2].activations, (std::vector<double>{0.25}));
@@ -167,7 +167,7 @@ TEST_F(ServerLoopTest, InvalidAndUndecodableActivationsAreRejectedAndCounted) {
   bus_.send_raw(Channel::activation, {1, 2, 3});  // not a message
   bus_.send_activation(1, {"flexor"}, {0.5});
   bus_.send_command("shutdown");
-  ASSERT_EQ(status(run()), status(ExitStatus::ok));
+  ASSERT_EQ(status(run()), status(common::kExitOk));
   ASSERT_EQ(published_steps(), (std::vector<std::int64_t>{0, 1}));
   EXPECT_EQ(bus_.states[1].activations, (std::vector<double>{0.5}));
   EXPECT_EQ(bus_.states[1].rejected_messages, 4);
@@ -183,7 +183,7 @@ TEST_F(ServerLoopTest, TwoControllersAreMergedAndAnOverlapIsRejected) {
   bus_.send_activation(2, {"extensor"}, {0.75});  // flexor keeps 0.5, named by nobody
   bus_.send_activation(2, {}, {});
   bus_.send_command("shutdown");
-  ASSERT_EQ(status(run(options, tongue::testing::kTwoMuscleBoxScene)), status(ExitStatus::ok));
+  ASSERT_EQ(status(run(options, tongue::testing::kTwoMuscleBoxScene)), status(common::kExitOk));
   ASSERT_EQ(published_steps(), (std::vector<std::int64_t>{0, 0, 1, 2}));
   EXPECT_EQ(bus_.states[1].rejected_messages, 1);
   EXPECT_EQ(bus_.states[2].activations, (std::vector<double>{0.5, 0.25}));  // not the 0.3
@@ -197,7 +197,7 @@ TEST_F(ServerLoopTest, PauseHoldsACompleteRoundUntilResume) {
   bus_.send_command("resume");
   bus_.send_activation(2, {"flexor"}, {0.6});
   bus_.send_command("shutdown");
-  ASSERT_EQ(status(run()), status(ExitStatus::ok));
+  ASSERT_EQ(status(run()), status(common::kExitOk));
   ASSERT_EQ(published_steps(), (std::vector<std::int64_t>{0, 0, 0, 1, 2}));
   EXPECT_EQ(bus_.states[1].status, "paused");
   EXPECT_EQ(bus_.states[2].status, "paused");  // describe while paused, still at step 0
@@ -212,7 +212,7 @@ TEST_F(ServerLoopTest, WhilePausedTheLatestActivationForTheNextStepIsTheOneTaken
   bus_.send_activation(1, {"flexor"}, {0.7});
   bus_.send_command("resume");
   bus_.send_command("shutdown");
-  ASSERT_EQ(status(run()), status(ExitStatus::ok));
+  ASSERT_EQ(status(run()), status(common::kExitOk));
   ASSERT_EQ(published_steps(), (std::vector<std::int64_t>{0, 0, 1}));
   EXPECT_EQ(bus_.states[2].activations, (std::vector<double>{0.7}));
   EXPECT_EQ(bus_.states[2].rejected_messages, 0);
@@ -227,7 +227,7 @@ TEST_F(ServerLoopTest, ResetRepeatsTheRunBitForBit) {
     if (round == 0) bus_.send_command("reset");
   }
   bus_.send_command("shutdown");
-  ASSERT_EQ(status(run(with_run_file())), status(ExitStatus::ok));
+  ASSERT_EQ(status(run(with_run_file())), status(common::kExitOk));
   ASSERT_EQ(published_steps(), (std::vector<std::int64_t>{0, 1, 2, 3, 0, 1, 2, 3}));
   EXPECT_EQ(bus_.states[4].rejected_messages, 0);
   EXPECT_EQ(bus_.states[4].positions, bus_.states[0].positions);
@@ -264,7 +264,7 @@ TEST_F(ServerLoopTest, DescribePublishesTheModelThenTheCurrentState) {
   bus_.send_activation(1, {"flexor"}, {0.4});
   bus_.send_command("describe");
   bus_.send_command("shutdown");
-  ASSERT_EQ(status(run()), status(ExitStatus::ok));
+  ASSERT_EQ(status(run()), status(common::kExitOk));
   EXPECT_EQ(bus_.published, "mssms");  // start: model, state 0; step 1; describe
   ASSERT_EQ(bus_.models.size(), 2u);
   EXPECT_EQ(bus_.models[1].rest_positions, bus_.models[0].rest_positions);
@@ -278,7 +278,7 @@ TEST_F(ServerLoopTest, ShutdownEndsTheRunAndLeavesTheRestUnread) {
   bus_.send_activation(1, {"flexor"}, {0.4});
   bus_.send_command("shutdown");
   bus_.send_activation(2, {"flexor"}, {0.4});
-  ASSERT_EQ(status(run(with_run_file())), status(ExitStatus::ok));
+  ASSERT_EQ(status(run(with_run_file())), status(common::kExitOk));
   EXPECT_EQ(published_steps(), (std::vector<std::int64_t>{0, 1}));
   const tongue::testing::RunFile f(dir_ / "run.h5");
   ASSERT_TRUE(f.ok());
@@ -291,7 +291,7 @@ TEST_F(ServerLoopTest, MaxStepsEndsTheRun) {
   ServerOptions options;
   options.max_steps = 2;
   for (int k = 1; k <= 4; ++k) bus_.send_activation(k, {"flexor"}, {0.4});
-  ASSERT_EQ(status(run(options)), status(ExitStatus::ok));
+  ASSERT_EQ(status(run(options)), status(common::kExitOk));
   EXPECT_EQ(published_steps(), (std::vector<std::int64_t>{0, 1, 2}));
 }
 
@@ -302,7 +302,7 @@ TEST_F(ServerLoopTest, ACommandWithAZeroStringLengthIsRejected) {
   bus_.send_raw(Channel::command, bytes);
   bus_.send_command("describe");
   bus_.send_command("shutdown");
-  ASSERT_EQ(status(run()), status(ExitStatus::ok));
+  ASSERT_EQ(status(run()), status(common::kExitOk));
   ASSERT_EQ(bus_.states.size(), 2u);
   EXPECT_EQ(bus_.states[1].rejected_messages, 1);
 }
@@ -326,7 +326,7 @@ TEST_F(ServerLoopTest, HostileCommandBytesAreRejectedWithoutThrowing) {
   for (const auto& bytes : hostile) bus_.send_raw(Channel::command, bytes);
   bus_.send_raw(Channel::command, command_bytes(6, reset));  // well formed: a real reset
   bus_.send_command("shutdown");
-  ASSERT_EQ(status(run()), status(ExitStatus::ok));
+  ASSERT_EQ(status(run()), status(common::kExitOk));
   ASSERT_EQ(published_steps(), (std::vector<std::int64_t>{0, 1, 0}));
   EXPECT_EQ(bus_.states[1].rejected_messages, 0);
   EXPECT_EQ(bus_.states[2].rejected_messages, 0);  // the reset cleared the count
@@ -343,7 +343,7 @@ TEST_F(ServerLoopTest, RandomBytesAfterTheCommandFingerprintAreRejected) {
   }
   bus_.send_command("describe");
   bus_.send_command("shutdown");
-  ASSERT_EQ(status(run()), status(ExitStatus::ok));
+  ASSERT_EQ(status(run()), status(common::kExitOk));
   ASSERT_EQ(bus_.states.size(), 2u);
   EXPECT_EQ(bus_.states[1].rejected_messages, kTrials);  // undecodable, or no command's name
 }
@@ -353,7 +353,7 @@ TEST_F(ServerLoopTest, AnUnknownCommandIsRejected) {
   bus_.send_command("Shutdown");
   bus_.send_command("describe");
   bus_.send_command("shutdown");
-  ASSERT_EQ(status(run()), status(ExitStatus::ok));
+  ASSERT_EQ(status(run()), status(common::kExitOk));
   ASSERT_EQ(bus_.states.size(), 2u);
   EXPECT_EQ(bus_.states[1].rejected_messages, 2);
 }
@@ -363,7 +363,7 @@ TEST_F(ServerLoopTest, LockStepSilenceStopsWhenAskedTo) {
   options.timeout_ms = 50;
   options.on_silence = OnSilence::stop;
   bus_.send_activation(1, {"flexor"}, {0.4});
-  ASSERT_EQ(status(run(options)), status(ExitStatus::silence));
+  ASSERT_EQ(status(run(options)), status(common::kExitSilence));
   EXPECT_EQ(published_steps(), (std::vector<std::int64_t>{0, 1}));
   const tongue::testing::RunFile f(dir_ / "run.h5");
   ASSERT_TRUE(f.ok());
@@ -376,7 +376,7 @@ TEST_F(ServerLoopTest, FastModeHoldsTheLatestActivationAndPublishesEveryKth) {
   options.publish_every = 2;
   options.max_steps = 5;
   bus_.send_activation(-1, {"flexor"}, {0.7});  // any step number, held from the first step
-  ASSERT_EQ(status(run(options)), status(ExitStatus::ok));
+  ASSERT_EQ(status(run(options)), status(common::kExitOk));
   EXPECT_EQ(published_steps(), (std::vector<std::int64_t>{0, 2, 4, 5}));
   for (std::size_t k = 1; k < bus_.states.size(); ++k)
     EXPECT_EQ(bus_.states[k].activations, (std::vector<double>{0.7}));
@@ -395,7 +395,7 @@ TEST_F(ServerLoopTest, RealTimeDecaysTheActivationAfterSilence) {
   options.max_steps = 40;
   bus_.send_activation(-1, {"flexor"}, {0.8});
   const auto start = std::chrono::steady_clock::now();
-  ASSERT_EQ(status(run(options)), status(ExitStatus::ok));
+  ASSERT_EQ(status(run(options)), status(common::kExitOk));
   const double took =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_GE(took, 39 * kDt);  // paced: step 40 starts no earlier than 39 dt after the start
@@ -425,7 +425,7 @@ TEST_F(ServerLoopTest, StatesCarryTheSelectedNodes) {
   ServerOptions options;
   options.nodes = Nodes::surface;
   bus_.send_command("shutdown");
-  ASSERT_EQ(status(run(options)), status(ExitStatus::ok));
+  ASSERT_EQ(status(run(options)), status(common::kExitOk));
   ASSERT_EQ(bus_.states.size(), 1u);
   const lcmt_tongue_state& s = bus_.states[0];
   EXPECT_EQ(s.num_nodes, 20);  // every node of a 4 x 1 x 1 box is on its surface

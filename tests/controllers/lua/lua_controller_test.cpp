@@ -188,12 +188,12 @@ TEST_F(LuaController, AMuscleTheModelLacksIsAClearError) {
   EXPECT_EQ(server->wait_exit(kRunWaitMs), 0) << server->stderr_text();
 }
 
-TEST_F(LuaController, BadCommandLinesExitWithStatus2) {
+TEST_F(LuaController, BadCommandLinesExitWithStatus1) {
   for (const std::string args :
        {"", "flexor", "flexor=1.5", "flexor=0.5@0.02:0.01", "flexor=0.5@-1", "--max-steps 0 a=1",
         "--prefix lower_ a=1", "--frobnicate a=1"}) {
     const testing::RunResult r = testing::run_command(LUA_STEP_CONTROLLER_PATH, args, dir_);
-    EXPECT_EQ(r.exit_code, 2) << "'" << args << "': " << r.err;
+    EXPECT_EQ(r.exit_code, 1) << "'" << args << "': " << r.err;
     EXPECT_NE(r.err.find("usage: step_controller.lua"), std::string::npos) << r.err;
   }
 }
