@@ -2,7 +2,9 @@
 // file is matched against what its folder may use, and a failure names the file, the line and
 // the rule, e.g.
 //   sim_server/fem/mesh/mesh.hpp:8: #include "scene/scene.hpp": fem/ uses nothing outside fem/
-// The link lines cannot catch an include of a header-only part of a higher layer; this can.
+// Each library's include root (cmake/TongueHeaders.cmake) already stops an include of a target
+// it does not link; this states the rule itself, so that a link added across the layers fails
+// here too.
 #include <gtest/gtest.h>
 
 #include <algorithm>
