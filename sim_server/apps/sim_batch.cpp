@@ -110,23 +110,22 @@ struct Tally {
 
 class BatchRun {
  public:
-  BatchRun(const scene::Scene& scene, scene::BuiltScene built, const std::string& output,
+  BatchRun(const scene::Scene& scene, scene::BuiltScene built_scene, const std::string& output,
            bool quiet, const common::InterruptHandlers& interrupt)
       : scene_(scene), quiet_(quiet), interrupt_(interrupt) {
     if (is_dynamic()) {
-      run_ = std::make_unique<scene_run::SceneRun>(scene_, std::move(built));
+      run_ = std::make_unique<scene_run::SceneRun>(scene_, std::move(built_scene));
     } else {
-      built_ = std::move(built);
+      built_ = std::move(built_scene);
     }
-    const fem::SolidModel& solid = *this->built().solid;
-    if (!output.empty()) log_ = scene_run::open_scene_run_file(output, scene_, this->built());
+    const fem::SolidModel& solid = *built().solid;
+    if (!output.empty()) log_ = scene_run::open_scene_run_file(output, scene_, built());
     std::printf(
         "%s: %d nodes, %d hex8, %d free dofs, mass %.4g kg, volume %.4g cm^3, %d muscles, %s "
         "analysis\n",
         scene_.source.c_str(), solid.mesh().num_nodes(), solid.mesh().num_elements(),
         solid.dofs().num_free(), solid.total_mass(), solid.reference_volume() * 1e6,
-        this->built().muscles ? this->built().muscles->num_muscles() : 0,
-        is_dynamic() ? "dynamic" : "static");
+        built().muscles ? built().muscles->num_muscles() : 0, is_dynamic() ? "dynamic" : "static");
     if (log_) {
       std::printf("run file: %s\n", output.c_str());
     } else {
