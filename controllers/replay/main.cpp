@@ -5,14 +5,15 @@
 #include <memory>
 
 #include "controller/controller_main.hpp"
-#include "replay/log_replayer.hpp"
+#include "replay/replayer.hpp"
 
 namespace {
 
 using namespace tongue;
 
 std::unique_ptr<controller::Controller> make(const controller::CommandLine& line) {
-  return std::make_unique<replay::LogReplayer>(replay::read_run_log(line.values.at("--log")));
+  return std::make_unique<replay::Replayer>(
+      replay::read_recorded_activations(line.values.at("--log")));
 }
 
 }  // namespace

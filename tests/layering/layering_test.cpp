@@ -196,7 +196,7 @@ TEST(Layering, FindsPlantedViolations) {
       << "#pragma once\n#include <vector>\n#include \"fem/types.hpp\"\n#include "
          "\"scene/scene.hpp\"\n";
   std::ofstream(root / "controllers/replay/bad.cpp")
-      << "#include \"replay/run_log.hpp\"\n#include \"run_file/run_file_reader.hpp\"\n"
+      << "#include \"replay/recorded_activations.hpp\"\n#include \"run_file/run_file_reader.hpp\"\n"
          "  #  include \"model/muscle.hpp\"\n";
   std::ofstream(root / "sim_server/common/bad.cpp")
       << "#include \"common/exit_code.hpp\"\n#include <lcm/lcm-cpp.hpp>\n#include "

@@ -71,7 +71,7 @@ TEST(XdmfText, WithoutFramesShowsTheRestPositions) {
   EXPECT_EQ(text.find("<Time"), std::string::npos);
 }
 
-TEST_F(XdmfSidecar, PositionLogWritesAValidSidecarWhenItCloses) {
+TEST_F(XdmfSidecar, RunFileWriterWritesAValidSidecarWhenItCloses) {
   const fem::Mesh mesh = fem::make_box({0, 0, 0}, {0.03, 0.02, 0.01}, 3, 2, 1);
   const fs::path h5 = dir_ / "sub dir" / "run.h5";
   constexpr int kFrames = 7;

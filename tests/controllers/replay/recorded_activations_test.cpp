@@ -1,6 +1,6 @@
-// Run files read for a replay (controllers/replay/run_log.hpp) and checked against a server's
-// model (log_replayer.hpp), without a bus; the run files are sim_batch's on small box scenes.
-#include "replay/run_log.hpp"
+// Run files read for a replay (controllers/replay/recorded_activations.hpp) and checked against a
+// server's model (replayer.hpp), without a bus; the run files are sim_batch's on small box scenes.
+#include "replay/recorded_activations.hpp"
 
 #include <gtest/gtest.h>
 #include <hdf5.h>
@@ -9,7 +9,7 @@
 #include <string>
 
 #include "controller/input_error.hpp"
-#include "replay/log_replayer.hpp"
+#include "replay/replayer.hpp"
 #include "support/run_command.hpp"
 #include "support/temp_dir_test.hpp"
 
@@ -44,7 +44,7 @@ activations:
   return s;
 }
 
-class RunLogTest : public tongue::testing::TempDirTest {
+class RecordedActivationsTest : public tongue::testing::TempDirTest {
  protected:
   fs::path batch(const std::string& scene, const std::string& name) {
     const fs::path out = dir_ / (name + ".h5");
@@ -65,10 +65,10 @@ class RunLogTest : public tongue::testing::TempDirTest {
   }
 
   // start() must throw an InputError naming the file and the dataset.
-  static void expect_misfit(RunLog log, const controller::Model& model, const std::string& dataset,
-                            const std::string& also) {
+  static void expect_misfit(RecordedActivations log, const controller::Model& model,
+                            const std::string& dataset, const std::string& also) {
     const std::string path = log.path;
-    LogReplayer replayer(std::move(log));
+    Replayer replayer(std::move(log));
     try {
       replayer.start(model);
       ADD_FAILURE() << "accepted";
@@ -80,8 +80,8 @@ class RunLogTest : public tongue::testing::TempDirTest {
   }
 };
 
-TEST_F(RunLogTest, ReadsTimesNamesForcesAndLevels) {
-  const RunLog log = read_run_log(batch(box_scene(), "run").string());
+TEST_F(RecordedActivationsTest, ReadsTimesNamesForcesAndLevels) {
+  const RecordedActivations log = read_recorded_activations(batch(box_scene(), "run").string());
   ASSERT_EQ(log.frames(), 11u);
   EXPECT_EQ(log.muscle_names, (std::vector<std::string>{"flexor"}));
   EXPECT_EQ(log.max_forces_n, (std::vector<double>{0.01}));
@@ -93,8 +93,8 @@ TEST_F(RunLogTest, ReadsTimesNamesForcesAndLevels) {
   }
 }
 
-TEST_F(RunLogTest, ReplayerSendsRowKForStepKAndEndsWithTheLog) {
-  LogReplayer replayer(read_run_log(batch(box_scene(), "run").string()));
+TEST_F(RecordedActivationsTest, ReplayerSendsRowKForStepKAndEndsWithTheLog) {
+  Replayer replayer(read_recorded_activations(batch(box_scene(), "run").string()));
   replayer.start(box_model());
   EXPECT_EQ(replayer.last_step(), 10);
   const controller::MuscleLevels l = replayer.command(5);
@@ -104,23 +104,24 @@ TEST_F(RunLogTest, ReplayerSendsRowKForStepKAndEndsWithTheLog) {
   EXPECT_THROW(replayer.command(11), std::out_of_range);
 }
 
-TEST_F(RunLogTest, LogThatDoesNotFitTheServerIsRejected) {
+TEST_F(RecordedActivationsTest, LogThatDoesNotFitTheServerIsRejected) {
   const std::string path = batch(box_scene(), "run").string();
   controller::Model other = box_model();
   other.muscle_names = {"extensor"};
-  expect_misfit(read_run_log(path), other, "/muscles/names", "(flexor)");
+  expect_misfit(read_recorded_activations(path), other, "/muscles/names", "(flexor)");
   controller::Model stronger = box_model();
   stronger.muscle_max_forces = {0.02};
-  expect_misfit(read_run_log(path), stronger, "/muscles/max_force", "0.01 N in the log, 0.02 N");
+  expect_misfit(read_recorded_activations(path), stronger, "/muscles/max_force",
+                "0.01 N in the log, 0.02 N");
   controller::Model finer = box_model();
   finer.dt = 0.001;
-  expect_misfit(read_run_log(path), finer, "/time", "frame 1 is at 0.002 s");
+  expect_misfit(read_recorded_activations(path), finer, "/time", "frame 1 is at 0.002 s");
   // Every second step logged: frame 1 is step 2.
-  expect_misfit(read_run_log(batch(box_scene("2"), "every2").string()), box_model(), "/time",
-                "every step");
+  expect_misfit(read_recorded_activations(batch(box_scene("2"), "every2").string()), box_model(),
+                "/time", "every step");
 }
 
-TEST_F(RunLogTest, ResetRunIsRejected) {
+TEST_F(RecordedActivationsTest, ResetRunIsRejected) {
   const std::string path = batch(box_scene(), "run").string();
   {  // what the server writes after a reset command
     const hid_t file = H5Fopen(path.c_str(), H5F_ACC_RDWR, H5P_DEFAULT);
@@ -136,28 +137,28 @@ TEST_F(RunLogTest, ResetRunIsRejected) {
     H5Tclose(type);
     H5Fclose(file);
   }
-  const RunLog log = read_run_log(path);
+  const RecordedActivations log = read_recorded_activations(path);
   EXPECT_EQ(log.resets, 1);
   expect_misfit(log, box_model(), "resets", "reset 1 time");
 }
 
-TEST_F(RunLogTest, UnreadableFilesNameTheFileAndTheDataset) {
+TEST_F(RecordedActivationsTest, UnreadableFilesNameTheFileAndTheDataset) {
   const std::string text = write("not_hdf5.h5", "hello");
   try {
-    read_run_log(text);
+    read_recorded_activations(text);
     ADD_FAILURE() << "accepted";
   } catch (const controller::InputError& e) {
     EXPECT_EQ(e.file(), text);
   }
   const std::string no_muscles = batch(box_scene("1", false), "no_muscles").string();
   try {
-    read_run_log(no_muscles);
+    read_recorded_activations(no_muscles);
     ADD_FAILURE() << "accepted";
   } catch (const controller::InputError& e) {
     EXPECT_EQ(e.file(), no_muscles);
     EXPECT_EQ(e.key_path(), "/muscles/names") << e.what();
   }
-  EXPECT_THROW(read_run_log((dir_ / "missing.h5").string()), controller::InputError);
+  EXPECT_THROW(read_recorded_activations((dir_ / "missing.h5").string()), controller::InputError);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-#include "replay/log_replayer.hpp"
+#include "replay/replayer.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -17,7 +17,7 @@ constexpr double kTimeTolerance = 1e-6;  // fraction of dt
 
 }  // namespace
 
-void LogReplayer::start(const controller::Model& model) {
+void Replayer::start(const controller::Model& model) {
   const auto fail = [&](const std::string& dataset, const std::string& reason) {
     throw controller::InputError(log_.path, dataset, reason);
   };
@@ -54,7 +54,7 @@ void LogReplayer::start(const controller::Model& model) {
   }
 }
 
-controller::MuscleLevels LogReplayer::command(std::int64_t step) {
+controller::MuscleLevels Replayer::command(std::int64_t step) {
   if (step < 0 || static_cast<std::size_t>(step) >= log_.frames())
     throw std::out_of_range("step " + std::to_string(step) + " is beyond the log's " +
                             std::to_string(log_.frames()) + " frames");
@@ -65,7 +65,7 @@ controller::MuscleLevels LogReplayer::command(std::int64_t step) {
   return out;
 }
 
-std::string LogReplayer::summary() const {
+std::string Replayer::summary() const {
   return std::to_string(log_.frames()) + " frames of " + std::to_string(log_.muscles()) +
          " muscles from " + log_.path;
 }

@@ -1,4 +1,4 @@
-#include "replay/run_log.hpp"
+#include "replay/recorded_activations.hpp"
 
 #include <cmath>
 
@@ -11,11 +11,11 @@ namespace {
 
 namespace L = run_file::layout;
 
-RunLog read(const run_file::RunFileReader& r) {
+RecordedActivations read(const run_file::RunFileReader& r) {
   const auto fail = [&](const std::string& dataset, const std::string& reason) {
     throw controller::InputError(r.path(), dataset, reason);
   };
-  RunLog log;
+  RecordedActivations log;
   log.path = r.path();
   if (!r.exists(L::kMuscleNames))
     fail(L::kMuscleNames, "missing (is this a run file of a scene with muscles?)");
@@ -50,7 +50,7 @@ RunLog read(const run_file::RunFileReader& r) {
 
 }  // namespace
 
-RunLog read_run_log(const std::string& path) {
+RecordedActivations read_recorded_activations(const std::string& path) {
   try {
     return read(run_file::RunFileReader(path));
   } catch (const run_file::RunFileError& e) {

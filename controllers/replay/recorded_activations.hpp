@@ -7,7 +7,7 @@
 
 namespace tongue::replay {
 
-struct RunLog {
+struct RecordedActivations {
   std::string path;
   std::vector<double> time_s;             // [T]
   std::vector<std::string> muscle_names;  // [M]
@@ -25,6 +25,6 @@ struct RunLog {
 // Reads the run file. Throws InputError naming the file and the dataset when it cannot be opened,
 // a dataset is missing or has the wrong shape (/activations must be [T x M] with T the length of
 // /time and M that of /muscles/names), or a level is not a finite number in [0, 1].
-RunLog read_run_log(const std::string& path);
+RecordedActivations read_recorded_activations(const std::string& path);
 
 }  // namespace tongue::replay

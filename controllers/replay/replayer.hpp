@@ -10,13 +10,13 @@
 #include <string>
 
 #include "controller/controller.hpp"
-#include "replay/run_log.hpp"
+#include "replay/recorded_activations.hpp"
 
 namespace tongue::replay {
 
-class LogReplayer final : public controller::Controller {
+class Replayer final : public controller::Controller {
  public:
-  explicit LogReplayer(RunLog log) : log_(std::move(log)) {}
+  explicit Replayer(RecordedActivations log) : log_(std::move(log)) {}
 
   // Throws InputError naming the run file and the dataset when the log does not fit the model.
   void start(const controller::Model& model) override;
@@ -28,7 +28,7 @@ class LogReplayer final : public controller::Controller {
   std::string summary() const override;
 
  private:
-  RunLog log_;
+  RecordedActivations log_;
 };
 
 }  // namespace tongue::replay
