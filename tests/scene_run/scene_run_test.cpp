@@ -10,27 +10,17 @@
 #include "scene/scene_builder.hpp"
 #include "scene/scene_reader.hpp"
 #include "scene_run/scene_run.hpp"
+#include "support/box_scenes.hpp"
 
 namespace tongue::scene_run {
 namespace {
 
-// A 40 x 10 x 10 mm block clamped at x = 0 under gravity, one muscle along the free end.
-constexpr const char* kBox = R"(
-mesh:
-  box: {size: [0.04, 0.01, 0.01], divisions: [4, 1, 1]}
-material: {type: mooney_rivlin5, density: 1000}
-constraints:
-  - {set: x_min, components: [x, y, z]}
-gravity: [0, -9.81, 0]
-muscles:
-  - {name: flexor, max_force: 0.01, elements: [2, 3], fibres: [{nodes: [2, 3, 4]}]}
-damping: {beta: 0.028}
-analysis: {type: dynamic, duration: 0.02, dt: 0.002, settle: SETTLE}
-)";
-
+// The test box (tests/support/box_scenes.hpp), settled under gravity first or not.
 scene::Scene box(bool settle) {
-  std::string text = kBox;
-  text.replace(text.find("SETTLE"), 6, settle ? "true" : "false");
+  std::string text = testing::kBoxScene;
+  const std::string analysis = "dt: 0.002}";
+  text.replace(text.find(analysis), analysis.size(),
+               std::string("dt: 0.002, settle: ") + (settle ? "true}" : "false}"));
   return scene::parse_scene(text, "", "box.yaml");
 }
 
@@ -118,8 +108,8 @@ TEST(SceneRun, RejectsLevelsOfTheWrongSizeOrRangeAndStaticScenes) {
   EXPECT_THROW(run.step(0.002, level(1.5)), std::invalid_argument);
   EXPECT_EQ(run.step_count(), 0);  // nothing was stepped
 
-  std::string text = kBox;
-  const std::string dynamic = "{type: dynamic, duration: 0.02, dt: 0.002, settle: SETTLE}";
+  std::string text = testing::kBoxScene;
+  const std::string dynamic = "{type: dynamic, duration: 0.02, dt: 0.002}";
   text.replace(text.find(dynamic), dynamic.size(), "{type: static}");
   const scene::Scene fixed = scene::parse_scene(text, "", "static.yaml");
   EXPECT_THROW(SceneRun(fixed, scene::build_scene(fixed)), std::invalid_argument);
