@@ -1,0 +1,43 @@
+#pragma once
+// The runner's view of a run on the bus: the server's states, for its readiness (state 0), the
+// progress and the closed loop's pace.
+#include <chrono>
+#include <cstdint>
+#include <optional>
+#include <string>
+
+#include <lcm/lcm-cpp.hpp>
+
+#include "bus/messages.hpp"
+
+namespace tongue::runner {
+
+class StateWatcher {
+ public:
+  // Subscribes to channel on the bus at url. Throws std::runtime_error when the bus cannot be
+  // opened.
+  StateWatcher(const std::string& url, const std::string& channel);
+  StateWatcher(const StateWatcher&) = delete;
+  StateWatcher& operator=(const StateWatcher&) = delete;
+
+  void poll(int timeout_ms) { lcm_.handleTimeout(timeout_ms); }
+  std::optional<std::int64_t> last_step() const { return last_step_; }
+  // Steps per wall second between the first and the last state received (0: too few).
+  double steps_per_second() const;
+  bool any_unconverged() const { return unconverged_; }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+
+  void on_state(const lcm::ReceiveBuffer*, const std::string&,
+                const tongue_lcm::lcmt_tongue_state* s);
+
+  lcm::LCM lcm_;
+  std::optional<std::int64_t> last_step_;
+  bool driving_ = false;
+  std::int64_t first_step_ = 0;
+  Clock::time_point first_at_, last_at_;
+  bool unconverged_ = false;
+};
+
+}  // namespace tongue::runner
