@@ -16,7 +16,6 @@
 // the accepted steps); 3 silence with --on-silence stop (lock-step or realtime); 130 SIGINT or
 // SIGTERM (the run file is closed with status "interrupted").
 #include <cstdio>
-#include <cstdlib>
 #include <exception>
 #include <optional>
 #include <string>
@@ -25,62 +24,15 @@
 #include "bus/lcm_server_bus.hpp"
 #include "common/exit_code.hpp"
 #include "common/interrupt.hpp"
-#include "common/number_text.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_reader.hpp"
 #include "server/server_loop.hpp"
+#include "sim_server_options.hpp"
 
 namespace tongue::apps {
 namespace {
 
 using common::kExitError;
-const std::string kDefaultUrl{bus::kDefaultLcmUrl};
-
-struct Options {
-  std::string scene_path;
-  std::string url = kDefaultUrl;
-  std::string prefix{bus::kDefaultChannelPrefix};
-  std::optional<std::string> output;
-  server::ServerOptions server;
-};
-
-void print_usage(std::FILE* to) {
-  std::fprintf(
-      to,
-      "usage: sim_server SCENE.yaml [--mode lockstep|fast|realtime] [--lcm-url URL]\n"
-      "                  [--prefix TONGUE_] [--output FILE] [--timeout-ms N] [--silence-s S]\n"
-      "                  [--on-silence hold|stop|decay] [--max-steps N]\n"
-      "                  [--nodes all|surface|midsagittal|landmarks] [--publish-every K]\n"
-      "                  [--controllers N]\n"
-      "  --mode          lockstep (default): step k+1 when the activation tagged k+1 arrives;\n"
-      "                  fast: free-running, latest activation held;\n"
-      "                  realtime: as fast, one step per dt of wall-clock time\n"
-      "  --lcm-url       LCM provider URL (default %s)\n"
-      "  --prefix        channel prefix, A-Z 0-9 _ (default TONGUE_)\n"
-      "  --output FILE   run file (overrides the scene's output.file)\n"
-      "  --timeout-ms    lock-step silence before a report, ms (default 1000)\n"
-      "  --silence-s     realtime silence before --on-silence acts, s (default 0.5)\n"
-      "  --on-silence    hold (default: keep waiting / keep the activation), stop (exit 3),\n"
-      "                  decay (realtime only: all activations to 0)\n"
-      "  --max-steps     end (exit 0) once this step is reached\n"
-      "  --nodes         nodes the states carry: all (default), surface, midsagittal, landmarks\n"
-      "  --publish-every fast and realtime: publish the state every K steps (default 1)\n"
-      "  --controllers   lock-step: step k+1 once N activations tagged k+1 have arrived, each\n"
-      "                  naming its own muscles, merged (default 1)\n",
-      kDefaultUrl.c_str());
-}
-
-bool parse_integer(const std::string& text, long long& out) {
-  const std::optional<long long> v = common::parse_integer(text);
-  if (v) out = *v;
-  return v.has_value();
-}
-
-bool parse_number(const std::string& text, double& out) {
-  const std::optional<double> v = common::parse_number(text);
-  if (v) out = *v;
-  return v.has_value();
-}
 
 const char* mode_name(server::Mode mode) {
   switch (mode) {
@@ -92,141 +44,6 @@ const char* mode_name(server::Mode mode) {
       return "real-time";
   }
   return "?";
-}
-
-std::optional<Options> parse_arguments(int argc, char** argv) {
-  Options o;
-  for (int i = 1; i < argc; ++i) {
-    std::string arg = argv[i];
-    std::optional<std::string> value;
-    if (const auto eq = arg.find('='); arg.rfind("--", 0) == 0 && eq != std::string::npos) {
-      value = arg.substr(eq + 1);
-      arg = arg.substr(0, eq);
-    }
-    if (arg == "--help" || arg == "-h") {
-      print_usage(stdout);
-      std::exit(common::kExitOk);
-    }
-    const bool takes_value = arg == "--mode" || arg == "--lcm-url" || arg == "--prefix" ||
-                             arg == "--output" || arg == "--timeout-ms" || arg == "--on-silence" ||
-                             arg == "--max-steps" || arg == "--silence-s" || arg == "--nodes" ||
-                             arg == "--publish-every" || arg == "--controllers";
-    if (takes_value && !value) {
-      if (i + 1 >= argc) {
-        std::fprintf(stderr, "sim_server: %s needs a value\n", arg.c_str());
-        return std::nullopt;
-      }
-      value = argv[++i];
-    }
-    long long number = 0;
-    if (arg == "--mode") {
-      if (*value == "lockstep") {
-        o.server.mode = server::Mode::lockstep;
-      } else if (*value == "fast") {
-        o.server.mode = server::Mode::fast;
-      } else if (*value == "realtime") {
-        o.server.mode = server::Mode::realtime;
-      } else {
-        std::fprintf(stderr, "sim_server: --mode must be lockstep, fast or realtime, not '%s'\n",
-                     value->c_str());
-        return std::nullopt;
-      }
-    } else if (arg == "--lcm-url") {
-      o.url = *value;
-    } else if (arg == "--prefix") {
-      o.prefix = *value;
-    } else if (arg == "--output") {
-      o.output = *value;
-    } else if (arg == "--timeout-ms") {
-      if (!parse_integer(*value, number) || number <= 0 || number > 3600000) {
-        std::fprintf(stderr, "sim_server: --timeout-ms must be an integer in [1, 3600000] ms\n");
-        return std::nullopt;
-      }
-      o.server.timeout_ms = static_cast<int>(number);
-    } else if (arg == "--on-silence") {
-      if (*value == "hold") {
-        o.server.on_silence = server::OnSilence::hold;
-      } else if (*value == "stop") {
-        o.server.on_silence = server::OnSilence::stop;
-      } else if (*value == "decay") {
-        o.server.on_silence = server::OnSilence::decay;
-      } else {
-        std::fprintf(stderr, "sim_server: --on-silence must be hold, stop or decay, not '%s'\n",
-                     value->c_str());
-        return std::nullopt;
-      }
-    } else if (arg == "--max-steps") {
-      if (!parse_integer(*value, number) || number < 0) {
-        std::fprintf(stderr, "sim_server: --max-steps must be an integer >= 0\n");
-        return std::nullopt;
-      }
-      o.server.max_steps = number;
-    } else if (arg == "--silence-s") {
-      double seconds = 0.0;
-      if (!parse_number(*value, seconds) || !(seconds > 0.0) || seconds > 3600.0) {
-        std::fprintf(stderr, "sim_server: --silence-s must be a number in (0, 3600] s\n");
-        return std::nullopt;
-      }
-      o.server.silence_s = seconds;
-    } else if (arg == "--nodes") {
-      if (*value == "all") {
-        o.server.nodes = server::Nodes::all;
-      } else if (*value == "surface") {
-        o.server.nodes = server::Nodes::surface;
-      } else if (*value == "midsagittal") {
-        o.server.nodes = server::Nodes::midsagittal;
-      } else if (*value == "landmarks") {
-        o.server.nodes = server::Nodes::landmarks;
-      } else {
-        std::fprintf(stderr,
-                     "sim_server: --nodes must be all, surface, midsagittal or landmarks, not "
-                     "'%s'\n",
-                     value->c_str());
-        return std::nullopt;
-      }
-    } else if (arg == "--publish-every") {
-      if (!parse_integer(*value, number) || number < 1 || number > 1000000000) {
-        std::fprintf(stderr, "sim_server: --publish-every must be an integer >= 1\n");
-        return std::nullopt;
-      }
-      o.server.publish_every = static_cast<int>(number);
-    } else if (arg == "--controllers") {
-      if (!parse_integer(*value, number) || number < 1 || number > 1000000) {
-        std::fprintf(stderr, "sim_server: --controllers must be an integer in [1, 1000000]\n");
-        return std::nullopt;
-      }
-      o.server.controllers = static_cast<int>(number);
-    } else if (!arg.empty() && arg[0] == '-') {
-      std::fprintf(stderr, "sim_server: unknown option '%s'\n", arg.c_str());
-      return std::nullopt;
-    } else if (o.scene_path.empty()) {
-      o.scene_path = arg;
-    } else {
-      std::fprintf(stderr, "sim_server: more than one scene given ('%s')\n", arg.c_str());
-      return std::nullopt;
-    }
-  }
-  if (o.scene_path.empty()) {
-    std::fprintf(stderr, "sim_server: no scene given\n");
-    return std::nullopt;
-  }
-  if (o.server.mode == server::Mode::lockstep && o.server.publish_every != 1) {
-    std::fprintf(stderr,
-                 "sim_server: --publish-every applies to --mode fast and realtime only (lock-step "
-                 "publishes every step)\n");
-    return std::nullopt;
-  }
-  if (o.server.mode != server::Mode::lockstep && o.server.controllers != 1) {
-    std::fprintf(stderr,
-                 "sim_server: --controllers applies to --mode lockstep only (fast and realtime "
-                 "hold the latest activation, whoever sends it)\n");
-    return std::nullopt;
-  }
-  if (o.server.mode != server::Mode::realtime && o.server.on_silence == server::OnSilence::decay) {
-    std::fprintf(stderr, "sim_server: --on-silence decay needs --mode realtime\n");
-    return std::nullopt;
-  }
-  return o;
 }
 
 int run(int argc, char** argv) {

@@ -24,12 +24,20 @@ double now_seconds() {
   return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
 }
 
+// The datasets that grow by one frame per append.
+struct FrameSeries {
+  Id time, positions, iterations, residual, wall_time, cuts;
+};
+struct MuscleSeries {
+  Id activations, length, velocity;
+};
+
 }  // namespace
 
 struct RunFileWriter::Handles {
   Id file;
-  Id time, positions, iterations, residual, wall_time, cuts;
-  Id activations, muscle_length, muscle_velocity;  // only with muscles
+  FrameSeries frames;
+  MuscleSeries muscles;  // only with muscles
 };
 
 namespace {
@@ -164,35 +172,32 @@ class Writer {
   std::string path_;
 };
 
-}  // namespace
-
-RunFileWriter::RunFileWriter(const std::string& path, const MeshDescription& mesh,
-                             const std::string& scene_text, const RunFileOptions& options,
-                             const std::vector<MuscleDescription>& muscles)
-    : path_(path),
-      num_nodes_(static_cast<int>(mesh.nodes.size())),
-      num_muscles_(static_cast<int>(muscles.size())),
-      flush_interval_(options.flush_interval),
-      h_(std::make_unique<Handles>()) {
+void create_parent_directories(const std::string& path) {
   const std::filesystem::path parent = std::filesystem::path(path).parent_path();
   std::error_code ec;
   if (!parent.empty()) std::filesystem::create_directories(parent, ec);
   if (ec)
     throw RunFileError(path, "",
                        "cannot create directory " + parent.string() + ": " + ec.message());
+}
 
-  const QuietErrors quiet;
-  const Writer w(path);
-  h_->file = Id(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
-  if (h_->file.get() < 0) throw RunFileError(path, "", "cannot create the HDF5 file");
-  const hid_t file = h_->file.get();
+Id create_file(const std::string& path) {
+  Id file(H5Fcreate(path.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose);
+  if (file.get() < 0) throw RunFileError(path, "", "cannot create the HDF5 file");
+  return file;
+}
 
+void write_root_attributes(const Writer& w, hid_t file, const std::string& time_unit,
+                           const std::string& scene_text) {
   w.int_attribute(file, L::kFormatVersionAttribute, L::kFormatVersion);
   w.string_attribute(file, L::kLengthUnitAttribute, "m");
-  w.string_attribute(file, L::kTimeUnitAttribute, options.time_unit);
+  w.string_attribute(file, L::kTimeUnitAttribute, time_unit);
   w.string_attribute(file, L::kSceneTextAttribute, scene_text);
+}
 
-  const auto n = static_cast<hsize_t>(num_nodes_);
+// The reference configuration: rest positions and hex8 connectivity.
+void write_mesh(const Writer& w, hid_t file, const MeshDescription& mesh) {
+  const auto n = static_cast<hsize_t>(mesh.nodes.size());
   const auto e = static_cast<hsize_t>(mesh.elements.size());
   std::vector<double> rest(3 * n);
   for (hsize_t i = 0; i < n; ++i)
@@ -204,86 +209,142 @@ RunFileWriter::RunFileWriter(const std::string& path, const MeshDescription& mes
           "node positions of the reference configuration");
   w.fixed(file, L::kElements, H5T_STD_I32LE, H5T_NATIVE_INT, {e, 8}, elements.data(), "1",
           "hex8 connectivity: 0-based node indices, ANSYS SOLID185 node order");
-  // Named sets, so that a picture tool can find landmarks and colour muscles without the scene.
-  {
-    const Id mesh_group = w.group(file, L::kMesh);
-    const Id node_sets = w.group(file, L::kNodeSets);
-    for (const auto& [name, nodes] : mesh.node_sets)
-      w.fixed(file, L::node_set(name), H5T_STD_I32LE, H5T_NATIVE_INT, {nodes.size()}, nodes.data(),
-              "1", "0-based node indices of node set " + name);
-    const Id element_sets = w.group(file, L::kElementSets);
-    for (const auto& [name, elements] : mesh.element_sets)
-      w.fixed(file, L::element_set(name), H5T_STD_I32LE, H5T_NATIVE_INT, {elements.size()},
-              elements.data(), "1", "0-based element indices of element set " + name);
-  }
+}
 
+// Named sets, so that a picture tool can find landmarks and colour muscles without the scene.
+void write_mesh_sets(const Writer& w, hid_t file, const MeshDescription& mesh) {
+  const Id mesh_group = w.group(file, L::kMesh);
+  const Id node_sets = w.group(file, L::kNodeSets);
+  for (const auto& [name, nodes] : mesh.node_sets)
+    w.fixed(file, L::node_set(name), H5T_STD_I32LE, H5T_NATIVE_INT, {nodes.size()}, nodes.data(),
+            "1", "0-based node indices of node set " + name);
+  const Id element_sets = w.group(file, L::kElementSets);
+  for (const auto& [name, elements] : mesh.element_sets)
+    w.fixed(file, L::element_set(name), H5T_STD_I32LE, H5T_NATIVE_INT, {elements.size()},
+            elements.data(), "1", "0-based element indices of element set " + name);
+}
+
+// Time, positions and the solver figures, each empty until the first append.
+FrameSeries create_frame_series(const Writer& w, hid_t file, hsize_t num_nodes,
+                                const RunFileOptions& options) {
   // About 64 KiB of positions per chunk: large enough to compress well, small enough that
   // reading one frame stays cheap; at least one frame, at most 64.
-  const hsize_t frame_bytes = std::max<hsize_t>(1, 3 * n * sizeof(double));
+  const hsize_t frame_bytes = std::max<hsize_t>(1, 3 * num_nodes * sizeof(double));
   const hsize_t chunk_frames = std::clamp<hsize_t>(65536 / frame_bytes, 1, 64);
   const hsize_t scalar_chunk = 1024;
   const int z = options.deflate_level;
-  h_->time = w.series(
+  FrameSeries s;
+  s.time = w.series(
       file, L::kTime, H5T_IEEE_F64LE, {}, scalar_chunk, z, options.time_unit,
       options.time_unit == "s" ? "simulated time of each frame" : "load factor of each frame");
-  h_->positions = w.series(file, L::kPositions, H5T_IEEE_F64LE, {n, 3}, chunk_frames, z, "m",
-                           "current node positions of each frame");
+  s.positions = w.series(file, L::kPositions, H5T_IEEE_F64LE, {num_nodes, 3}, chunk_frames, z, "m",
+                         "current node positions of each frame");
   const Id solver = w.group(file, L::kSolver);
-  h_->iterations = w.series(file, L::kIterations, H5T_STD_I32LE, {}, scalar_chunk, z, "1",
-                            "Newton iterations since the previous frame, over all substeps");
-  h_->residual = w.series(file, L::kResidual, H5T_IEEE_F64LE, {}, scalar_chunk, z, "N",
-                          "final residual norm of the frame's step");
-  h_->wall_time = w.series(file, L::kWallTime, H5T_IEEE_F64LE, {}, scalar_chunk, z, "s",
-                           "wall-clock time since the previous frame");
-  h_->cuts = w.series(file, L::kCuts, H5T_STD_I32LE, {}, scalar_chunk, z, "1",
-                      "step halvings since the previous frame");
+  s.iterations = w.series(file, L::kIterations, H5T_STD_I32LE, {}, scalar_chunk, z, "1",
+                          "Newton iterations since the previous frame, over all substeps");
+  s.residual = w.series(file, L::kResidual, H5T_IEEE_F64LE, {}, scalar_chunk, z, "N",
+                        "final residual norm of the frame's step");
+  s.wall_time = w.series(file, L::kWallTime, H5T_IEEE_F64LE, {}, scalar_chunk, z, "s",
+                         "wall-clock time since the previous frame");
+  s.cuts = w.series(file, L::kCuts, H5T_STD_I32LE, {}, scalar_chunk, z, "1",
+                    "step halvings since the previous frame");
+  return s;
+}
+
+// Every fibre of every muscle, flattened into the columns of /muscles/fibres.
+struct FibreTable {
+  std::vector<int> muscle, offsets{0}, nodes;
+  std::vector<double> weights, origins;
+};
+
+FibreTable fibre_table(const std::vector<MuscleDescription>& muscles) {
+  FibreTable t;
+  for (std::size_t i = 0; i < muscles.size(); ++i) {
+    for (const FibreDescription& f : muscles[i].fibres) {
+      t.muscle.push_back(static_cast<int>(i));
+      t.weights.push_back(f.weight);
+      t.origins.insert(t.origins.end(), f.origin.begin(), f.origin.end());
+      t.nodes.insert(t.nodes.end(), f.nodes.begin(), f.nodes.end());
+      t.offsets.push_back(static_cast<int>(t.nodes.size()));
+    }
+  }
+  return t;
+}
+
+// The group /muscles/fibres; none when no muscle has fibres.
+void write_fibres(const Writer& w, hid_t file, const std::vector<MuscleDescription>& muscles) {
+  const FibreTable t = fibre_table(muscles);
+  if (t.muscle.empty()) return;
+  const auto f = static_cast<hsize_t>(t.muscle.size());
+  const Id fibres = w.group(file, L::kFibres);
+  w.fixed(file, L::kFibreMuscle, H5T_STD_I32LE, H5T_NATIVE_INT, {f}, t.muscle.data(), "1",
+          "index of the fibre's muscle in /muscles/names");
+  w.fixed(file, L::kFibreWeight, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {f}, t.weights.data(), "1",
+          "share of the muscle's tension the fibre carries");
+  w.fixed(file, L::kFibreOrigin, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {f, 3}, t.origins.data(), "m",
+          "fixed bony attachment before the first node; NaN when the fibre has none");
+  w.fixed(file, L::kFibreNodeOffsets, H5T_STD_I32LE, H5T_NATIVE_INT, {f + 1}, t.offsets.data(), "1",
+          "fibre k's nodes are nodes[node_offsets[k] .. node_offsets[k+1])");
+  w.fixed(file, L::kFibreNodes, H5T_STD_I32LE, H5T_NATIVE_INT,
+          {static_cast<hsize_t>(t.nodes.size())}, t.nodes.data(), "1",
+          "0-based node indices of every fibre, in order, fibre after fibre");
+}
+
+// The group /muscles: names, maximum forces and fibres.
+void write_muscles(const Writer& w, hid_t file, const std::vector<MuscleDescription>& muscles) {
+  const Id group = w.group(file, L::kMuscles);
+  std::vector<std::string> names;
+  std::vector<double> max_force;
+  for (const auto& mu : muscles) {
+    names.push_back(mu.name);
+    max_force.push_back(mu.max_force);
+  }
+  w.strings(file, L::kMuscleNames, names, "muscle names, in the order of every muscle dataset");
+  w.fixed(file, L::kMaxForce, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {max_force.size()},
+          max_force.data(), "N", "tension at full activation");
+  write_fibres(w, file, muscles);
+}
+
+// Activations, lengths and velocities of the muscles, each empty until the first append.
+MuscleSeries create_muscle_series(const Writer& w, hid_t file, hsize_t num_muscles,
+                                  int deflate_level) {
+  const hsize_t m = num_muscles;
+  const int z = deflate_level;
+  // Like the positions: about 64 KiB per chunk, at least one frame, at most 1024.
+  const hsize_t chunk = std::clamp<hsize_t>(65536 / (m * sizeof(double)), 1, 1024);
+  MuscleSeries s;
+  s.activations = w.series(file, L::kActivations, H5T_IEEE_F64LE, {m}, chunk, z, "1",
+                           "activation level of each muscle, a fraction of max_force");
+  s.length = w.series(file, L::kMuscleLength, H5T_IEEE_F64LE, {m}, chunk, z, "m",
+                      "weighted mean fibre length of each muscle");
+  s.velocity = w.series(file, L::kMuscleVelocity, H5T_IEEE_F64LE, {m}, chunk, z, "m/s",
+                        "rate of change of the muscle length, positive when lengthening");
+  return s;
+}
+
+}  // namespace
+
+RunFileWriter::RunFileWriter(const std::string& path, const MeshDescription& mesh,
+                             const std::string& scene_text, const RunFileOptions& options,
+                             const std::vector<MuscleDescription>& muscles)
+    : path_(path),
+      num_nodes_(static_cast<int>(mesh.nodes.size())),
+      num_muscles_(static_cast<int>(muscles.size())),
+      flush_interval_(options.flush_interval),
+      h_(std::make_unique<Handles>()) {
+  create_parent_directories(path);
+  const QuietErrors quiet;
+  const Writer w(path);
+  h_->file = create_file(path);
+  const hid_t file = h_->file.get();
+  write_root_attributes(w, file, options.time_unit, scene_text);
+  write_mesh(w, file, mesh);
+  write_mesh_sets(w, file, mesh);
+  h_->frames = create_frame_series(w, file, static_cast<hsize_t>(num_nodes_), options);
   if (num_muscles_ > 0) {
-    const auto m = static_cast<hsize_t>(num_muscles_);
-    const Id group = w.group(file, L::kMuscles);
-    std::vector<std::string> names;
-    std::vector<double> max_force;
-    for (const auto& mu : muscles) {
-      names.push_back(mu.name);
-      max_force.push_back(mu.max_force);
-    }
-    w.strings(file, L::kMuscleNames, names, "muscle names, in the order of every muscle dataset");
-    w.fixed(file, L::kMaxForce, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {m}, max_force.data(), "N",
-            "tension at full activation");
-    std::vector<int> fibre_muscle, offsets{0}, nodes;
-    std::vector<double> weights, origins;
-    for (std::size_t i = 0; i < muscles.size(); ++i) {
-      for (const FibreDescription& f : muscles[i].fibres) {
-        fibre_muscle.push_back(static_cast<int>(i));
-        weights.push_back(f.weight);
-        origins.insert(origins.end(), f.origin.begin(), f.origin.end());
-        nodes.insert(nodes.end(), f.nodes.begin(), f.nodes.end());
-        offsets.push_back(static_cast<int>(nodes.size()));
-      }
-    }
-    if (!fibre_muscle.empty()) {
-      const auto f = static_cast<hsize_t>(fibre_muscle.size());
-      const Id fibres = w.group(file, L::kFibres);
-      w.fixed(file, L::kFibreMuscle, H5T_STD_I32LE, H5T_NATIVE_INT, {f}, fibre_muscle.data(), "1",
-              "index of the fibre's muscle in /muscles/names");
-      w.fixed(file, L::kFibreWeight, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {f}, weights.data(), "1",
-              "share of the muscle's tension the fibre carries");
-      w.fixed(file, L::kFibreOrigin, H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE, {f, 3}, origins.data(), "m",
-              "fixed bony attachment before the first node; NaN when the fibre has none");
-      w.fixed(file, L::kFibreNodeOffsets, H5T_STD_I32LE, H5T_NATIVE_INT, {f + 1}, offsets.data(),
-              "1", "fibre k's nodes are nodes[node_offsets[k] .. node_offsets[k+1])");
-      w.fixed(file, L::kFibreNodes, H5T_STD_I32LE, H5T_NATIVE_INT,
-              {static_cast<hsize_t>(nodes.size())}, nodes.data(), "1",
-              "0-based node indices of every fibre, in order, fibre after fibre");
-    }
-    // Like the positions: about 64 KiB per chunk, at least one frame, at most 1024.
-    const hsize_t muscle_chunk = std::clamp<hsize_t>(65536 / (m * sizeof(double)), 1, 1024);
-    h_->activations = w.series(file, L::kActivations, H5T_IEEE_F64LE, {m}, muscle_chunk, z, "1",
-                               "activation level of each muscle, a fraction of max_force");
-    h_->muscle_length = w.series(file, L::kMuscleLength, H5T_IEEE_F64LE, {m}, muscle_chunk, z, "m",
-                                 "weighted mean fibre length of each muscle");
-    h_->muscle_velocity =
-        w.series(file, L::kMuscleVelocity, H5T_IEEE_F64LE, {m}, muscle_chunk, z, "m/s",
-                 "rate of change of the muscle length, positive when lengthening");
+    write_muscles(w, file, muscles);
+    h_->muscles =
+        create_muscle_series(w, file, static_cast<hsize_t>(num_muscles_), options.deflate_level);
   }
   w.check(H5Fflush(file, H5F_SCOPE_LOCAL), "flush");
   last_flush_ = now_seconds();
@@ -299,8 +360,8 @@ RunFileWriter::~RunFileWriter() {
     run.h5_file = std::filesystem::path(path_).filename().string();
     run.num_nodes = num_nodes_;
     run.times.resize(static_cast<std::size_t>(frames_));
-    if (frames_ > 0 && H5Dread(h_->time.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL, H5P_DEFAULT,
-                               run.times.data()) < 0)
+    if (frames_ > 0 && H5Dread(h_->frames.time.get(), H5T_NATIVE_DOUBLE, H5S_ALL, H5S_ALL,
+                               H5P_DEFAULT, run.times.data()) < 0)
       run.times.clear();
     const Id elements(H5Dopen2(h_->file.get(), L::kElements, H5P_DEFAULT), H5Dclose);
     const Id element_space(H5Dget_space(elements.get()), H5Sclose);
@@ -329,21 +390,21 @@ void RunFileWriter::append(double time, const Eigen::VectorXd& positions,
   const Writer w(path_);
   const auto frame = static_cast<hsize_t>(frames_);
   // Eigen vectors are contiguous: 3 n + c is exactly the [N x 3] row-major frame layout.
-  w.append(h_->positions.get(), frame, H5T_NATIVE_DOUBLE, positions.data(), L::kPositions);
-  w.append(h_->iterations.get(), frame, H5T_NATIVE_INT, &figures.iterations, L::kIterations);
-  w.append(h_->residual.get(), frame, H5T_NATIVE_DOUBLE, &figures.residual, L::kResidual);
-  w.append(h_->wall_time.get(), frame, H5T_NATIVE_DOUBLE, &figures.wall_time, L::kWallTime);
-  w.append(h_->cuts.get(), frame, H5T_NATIVE_INT, &figures.cuts, L::kCuts);
+  w.append(h_->frames.positions.get(), frame, H5T_NATIVE_DOUBLE, positions.data(), L::kPositions);
+  w.append(h_->frames.iterations.get(), frame, H5T_NATIVE_INT, &figures.iterations, L::kIterations);
+  w.append(h_->frames.residual.get(), frame, H5T_NATIVE_DOUBLE, &figures.residual, L::kResidual);
+  w.append(h_->frames.wall_time.get(), frame, H5T_NATIVE_DOUBLE, &figures.wall_time, L::kWallTime);
+  w.append(h_->frames.cuts.get(), frame, H5T_NATIVE_INT, &figures.cuts, L::kCuts);
   if (num_muscles_ > 0) {
-    w.append(h_->activations.get(), frame, H5T_NATIVE_DOUBLE, muscles.activations.data(),
+    w.append(h_->muscles.activations.get(), frame, H5T_NATIVE_DOUBLE, muscles.activations.data(),
              L::kActivations);
-    w.append(h_->muscle_length.get(), frame, H5T_NATIVE_DOUBLE, muscles.lengths.data(),
+    w.append(h_->muscles.length.get(), frame, H5T_NATIVE_DOUBLE, muscles.lengths.data(),
              L::kMuscleLength);
-    w.append(h_->muscle_velocity.get(), frame, H5T_NATIVE_DOUBLE, muscles.velocities.data(),
+    w.append(h_->muscles.velocity.get(), frame, H5T_NATIVE_DOUBLE, muscles.velocities.data(),
              L::kMuscleVelocity);
   }
   // time last: a reader that sees T times finds T frames in every other dataset.
-  w.append(h_->time.get(), frame, H5T_NATIVE_DOUBLE, &time, L::kTime);
+  w.append(h_->frames.time.get(), frame, H5T_NATIVE_DOUBLE, &time, L::kTime);
   ++frames_;
   const double now = now_seconds();
   if (now - last_flush_ >= flush_interval_) flush();
