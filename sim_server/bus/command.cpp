@@ -1,6 +1,5 @@
 #include "bus/command.hpp"
 
-
 #include "bus/wire_format.hpp"
 
 namespace tongue::bus {

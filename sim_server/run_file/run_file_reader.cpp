@@ -45,6 +45,17 @@ std::vector<T> read_all(hid_t file, const std::string& path, const std::string& 
   return out;
 }
 
+// The attribute name of object ("/" or a dataset) opened, where set to the text errors name it
+// by ("status", "/time units"); RunFileError when it is missing.
+Id open_attribute(const RunFileReader& reader, hid_t file, const std::string& object,
+                  const std::string& name, std::string& where) {
+  where = object == layout::kRoot ? name : object + " " + name;
+  if (!reader.has_attribute(object, name))
+    throw RunFileError(reader.path(), where, "missing attribute");
+  return Id(H5Aopen_by_name(file, object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
+            H5Aclose);
+}
+
 }  // namespace
 
 RunFileReader::RunFileReader(const std::string& path)
@@ -122,11 +133,8 @@ bool RunFileReader::has_attribute(const std::string& object, const std::string& 
 std::string RunFileReader::string_attribute(const std::string& object,
                                             const std::string& name) const {
   const QuietErrors quiet;
-  const std::string where = object == layout::kRoot ? name : object + " " + name;
-  if (!has_attribute(object, name)) throw RunFileError(path_, where, "missing attribute");
-  const Id attr(
-      H5Aopen_by_name(file_->id.get(), object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
-      H5Aclose);
+  std::string where;
+  const Id attr = open_attribute(*this, file_->id.get(), object, name, where);
   const Id type(attr.valid() ? H5Aget_type(attr.get()) : H5I_INVALID_HID, H5Tclose);
   if (!type.valid() || H5Tget_class(type.get()) != H5T_STRING)
     throw RunFileError(path_, where, "expected a string attribute");
@@ -146,11 +154,8 @@ std::string RunFileReader::string_attribute(const std::string& object,
 
 int RunFileReader::int_attribute(const std::string& object, const std::string& name) const {
   const QuietErrors quiet;
-  const std::string where = object == layout::kRoot ? name : object + " " + name;
-  if (!has_attribute(object, name)) throw RunFileError(path_, where, "missing attribute");
-  const Id attr(
-      H5Aopen_by_name(file_->id.get(), object.c_str(), name.c_str(), H5P_DEFAULT, H5P_DEFAULT),
-      H5Aclose);
+  std::string where;
+  const Id attr = open_attribute(*this, file_->id.get(), object, name, where);
   int value = 0;
   if (!attr.valid() || H5Aread(attr.get(), H5T_NATIVE_INT, &value) < 0)
     throw RunFileError(path_, where, "cannot be read as an integer");

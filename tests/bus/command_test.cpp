@@ -10,20 +10,13 @@
 #include <string>
 #include <vector>
 
+#include "wire_bytes.hpp"
+
 namespace tongue::bus {
 namespace {
 
-std::vector<std::uint8_t> encoded(const tongue_lcm::lcmt_tongue_command& msg) {
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
-  msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  return bytes;
-}
-
-// Overwrites the big-endian int32 at offset.
-void put_int32(std::vector<std::uint8_t>& bytes, std::size_t offset, std::int32_t value) {
-  const auto v = static_cast<std::uint32_t>(value);
-  for (int i = 0; i < 4; ++i) bytes[offset + i] = static_cast<std::uint8_t>(v >> (24 - 8 * i));
-}
+using testing::encoded;
+using testing::put_int32;
 
 constexpr std::size_t kLengthOffset = 16;  // after fingerprint and utime
 

@@ -8,6 +8,7 @@
 
 #include "bus/activation_validation.hpp"
 #include "bus/messages.hpp"
+#include "wire_bytes.hpp"
 
 namespace tongue::bus {
 namespace {
@@ -19,16 +20,10 @@ std::vector<std::uint8_t> encoded_activation() {
   msg.num_muscles = 2;
   msg.names = {"GGp_left", "SL"};
   msg.levels = {0.5, 0.75};
-  std::vector<std::uint8_t> bytes(static_cast<std::size_t>(msg.getEncodedSize()));
-  msg.encode(bytes.data(), 0, static_cast<int>(bytes.size()));
-  return bytes;
+  return testing::encoded(msg);
 }
 
-// Overwrites the big-endian int32 at offset.
-void put_int32(std::vector<std::uint8_t>& bytes, std::size_t offset, std::int32_t value) {
-  const auto v = static_cast<std::uint32_t>(value);
-  for (int i = 0; i < 4; ++i) bytes[offset + i] = static_cast<std::uint8_t>(v >> (24 - 8 * i));
-}
+using testing::put_int32;
 
 constexpr std::size_t kNumMusclesOffset = 24;  // after fingerprint, utime, step
 constexpr std::size_t kFirstNameOffset = 28;
