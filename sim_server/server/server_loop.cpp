@@ -87,10 +87,12 @@ ExitStatus ServerLoop::run() {
     failure_ = e.what();
     std::fprintf(stderr, "sim_server: error: %s\n", e.what());
   }
+  std::fprintf(stderr, "sim_server: %s\n", timing_.summary().c_str());
   if (log_) {
     try {
       log_->set_attribute("status", status_text(status));
       log_->set_attribute("resets", std::to_string(resets_));
+      for (const auto& [name, value] : timing_.attributes()) log_->set_attribute(name, value);
       log_->flush();
     } catch (const std::exception& e) {
       std::fprintf(stderr, "sim_server: error: %s\n", e.what());
@@ -128,8 +130,10 @@ ExitStatus ServerLoop::loop() {
       for (bus::IncomingMessage& m : bus_.receive(wait_ms())) inbox_.push_back(std::move(m));
     }
     if (!inbox_.empty()) {
+      const auto turn = StepTiming::Clock::now();
       input_.record(inbox_.front(), run_.step_count(), steady_seconds());
       inbox_.pop_front();
+      timing_.add(StepTiming::Part::loop, turn);
       if (const auto command = input_.take_command()) execute(*command);
       if (shutdown_ || !failure_.empty()) continue;
     }
@@ -320,7 +324,10 @@ void ServerLoop::take_step(const fem::Vector& levels) {
   const double dt = run_.scene().analysis.dt;
   const double finish_by = step_start_time() + dt;  // real-time: later is an overrun
   const std::int64_t from = run_.step_count();
+  auto mark = StepTiming::Clock::now();
+  timing_.start_step(mark);
   last_ = run_.step(dt, levels);
+  mark = timing_.add(StepTiming::Part::physics, mark);
   if (!last_.report.converged) {
     failure_ = "step " + std::to_string(from + 1) + " failed to converge: " + last_.report.message;
     std::fprintf(stderr, "sim_server: %s; stopping at the last accepted state\n", failure_.c_str());
@@ -332,8 +339,11 @@ void ServerLoop::take_step(const fem::Vector& levels) {
   if (options_.mode == Mode::realtime) count_overrun(steady_seconds() - finish_by);
   if (last_.ellipticity_loss) warn_material();
   if (options_.mode == Mode::lockstep) input_.next_round(run_.levels());
+  mark = timing_.add(StepTiming::Part::loop, mark);
   log_frame();
+  mark = timing_.add(StepTiming::Part::run_file, mark);
   if (should_publish()) publish_state("ok");
+  timing_.end_step(timing_.add(StepTiming::Part::state_message, mark));
 }
 
 void ServerLoop::count_overrun(double late) {

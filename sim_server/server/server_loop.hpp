@@ -22,7 +22,8 @@
 // again, then the current state). Rejections and overruns are reported on stderr at most once
 // per kind per second, with the count of those not shown.
 // The run file's root attributes: status ("completed", "interrupted", "stopped: <silence>",
-// "failed: <why>"), resets (how many), material_warning (the first loss of ellipticity).
+// "failed: <why>"), resets (how many), material_warning (the first loss of ellipticity), and
+// the steps' timing (StepTiming::attributes), also summed up in one line on stderr at the end.
 //
 // How it is built: the loop takes the messages one at a time and hands each to ControlInput,
 // which only records what it means (an activation merged into the round or the hold, a command
@@ -46,6 +47,7 @@
 #include "server/control_input.hpp"
 #include "server/node_selection.hpp"
 #include "server/server_options.hpp"
+#include "server/step_timing.hpp"
 
 namespace tongue::server {
 
@@ -98,6 +100,7 @@ class ServerLoop {
   std::unique_ptr<run_file::RunFileWriter> log_;
   std::vector<int> node_indices_;  // nodes the states carry
   common::RateLimitedReporter overrun_reports_;
+  StepTiming timing_;
 
   std::deque<bus::IncomingMessage> inbox_;  // received, not yet recorded
   ControlInput input_;                      // what the messages recorded so far ask for

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <memory>
@@ -430,6 +431,33 @@ TEST_F(ServerLoopTest, StatesCarryTheSelectedNodes) {
   const lcmt_tongue_state& s = bus_.states[0];
   EXPECT_EQ(s.num_nodes, 20);  // every node of a 4 x 1 x 1 box is on its surface
   EXPECT_EQ(s.positions.size(), 3 * s.node_indices.size());
+}
+
+TEST_F(ServerLoopTest, TheRunFileCarriesThePerStepTiming) {
+  constexpr std::int64_t kSteps = 6;
+  for (std::int64_t k = 1; k <= kSteps; ++k) bus_.send_activation(k, {"flexor"}, {0.3});
+  bus_.send_command("shutdown");
+  ASSERT_EQ(status(run(with_run_file())), status(common::kExitOk));
+  const tongue::testing::RunFile f(dir_ / "run.h5");
+  ASSERT_TRUE(f.ok());
+  EXPECT_EQ(f.string_attribute("/", "timing_steps"), std::to_string(kSteps));
+  for (const char* part : {"physics", "run_file", "state_message", "loop"}) {
+    for (const char* figure : {"_ms", "_max_ms"}) {
+      const std::string name = std::string("timing_") + part + figure;
+      const std::string text = f.string_attribute("/", name);
+      ASSERT_NE(text, "<missing>") << name;
+      const double value = std::stod(text);
+      EXPECT_TRUE(std::isfinite(value)) << name << " = " << text;
+      EXPECT_GE(value, 0.0) << name << " = " << text;
+    }
+  }
+  const double span = std::stod(f.string_attribute("/", "timing_span_s"));
+  EXPECT_TRUE(std::isfinite(span));
+  EXPECT_GE(span, 1e-3 * kSteps * std::stod(f.string_attribute("/", "timing_physics_ms")));
+  // Every step solves, so its physics takes some time, and the max is at least the mean.
+  EXPECT_GT(std::stod(f.string_attribute("/", "timing_physics_ms")), 0.0);
+  EXPECT_GE(std::stod(f.string_attribute("/", "timing_physics_max_ms")),
+            std::stod(f.string_attribute("/", "timing_physics_ms")));
 }
 
 }  // namespace

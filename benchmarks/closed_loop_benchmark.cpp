@@ -1,0 +1,271 @@
+// The closed loop's pace and where its time goes: sim_server in lock-step with a controller, as
+// separate processes on a loopback udpm bus of its own, the way the experiment runner runs them:
+//   ai, ku      scenes/tongue_ep.yaml + ep_controller --plan controllers/plans/{ai,ku}.yaml, 0.5 s
+//   sg3n_relax  scenes/tongue_sg_3n_relax.yaml + sequence_player
+//               --schedule controllers/sequences/sg_3n_relax.yaml, 0.32 s
+// each with the scene's solver threads set to 1 and to 2 (a copy of the scene with
+// `solver: {threads: N}`). Per run: the steps, simulated s, wall s of the run (sim_server's start
+// to its end, settling included), the closed-loop real-time factor (simulated s per wall s between
+// the first and the last driven state this program sees on the bus), the server's own per-step
+// figures from the run file's timing attributes (physics, run file, state message, loop), and the
+// bus round trip: the wall time per step minus the server's own time per step (the state's way
+// to the controller, its answer, and the activation's way back).
+//
+// Usage: closed_loop_benchmark [--runs K]   (default 3: medians of K runs per row)
+// Uses ports 7795-7799. Build in Release; with K = 3 it takes a few minutes.
+
+#include <signal.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "bus/channels.hpp"
+#include "run_figures.hpp"
+#include "run_file/run_file_reader.hpp"
+#include "run_member.hpp"
+#include "scene/scene_reader.hpp"
+#include "state_watcher.hpp"
+
+#if !defined(SIM_SERVER_PATH) || !defined(EP_CONTROLLER_PATH) || !defined(SEQUENCE_PLAYER_PATH) || \
+    !defined(TONGUE_SOURCE_DIR)
+#error "the programs' paths and TONGUE_SOURCE_DIR must be defined"
+#endif
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using tongue::runner::Member;
+
+constexpr int kFirstPort = 7795;
+constexpr int kPorts = 5;
+constexpr double kRunTimeout = 600.0;  // s of wall time a run may take
+const char* const kPrefix = "TONGUE_";
+
+struct Scenario {
+  const char* name;
+  const char* scene;                    // relative to the source tree
+  double duration;                      // s
+  std::vector<std::string> controller;  // the program and its own arguments
+};
+
+std::vector<Scenario> scenarios() {
+  const std::string src = TONGUE_SOURCE_DIR;
+  return {
+      {"ai",
+       "scenes/tongue_ep.yaml",
+       0.5,
+       {EP_CONTROLLER_PATH, "--plan", src + "/controllers/plans/ai.yaml"}},
+      {"ku",
+       "scenes/tongue_ep.yaml",
+       0.5,
+       {EP_CONTROLLER_PATH, "--plan", src + "/controllers/plans/ku.yaml"}},
+      {"sg3n_relax",
+       "scenes/tongue_sg_3n_relax.yaml",
+       0.32,
+       {SEQUENCE_PLAYER_PATH, "--schedule", src + "/controllers/sequences/sg_3n_relax.yaml"}},
+  };
+}
+
+// What one run measured; times per step in ms.
+struct Figures {
+  double steps = 0, simulated = 0, run_wall = 0, rtf = 0, rtf_bus = 0;
+  double physics = 0, run_file = 0, state_message = 0, loop = 0, server = 0, wall_step = 0,
+         round_trip = 0;
+};
+
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The scene's text with `solver: {threads: N}` added; it must not set a solver of its own.
+void write_scene_copy(const fs::path& from, int threads, const fs::path& to) {
+  std::ifstream in(from);
+  if (!in) throw std::runtime_error("cannot read " + from.string());
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string body = text.str();
+  if (body.starts_with("solver:") || body.find("\nsolver:") != std::string::npos)
+    throw std::runtime_error(from.string() + " has a solver section; the copy would repeat it");
+  std::ofstream(to) << body << "\nsolver: {threads: " << threads << "}\n";
+}
+
+double timing_attribute(const tongue::run_file::RunFileReader& h5, const std::string& name) {
+  return std::stod(h5.string_attribute("/", name));
+}
+
+std::string failure_text(const Member& m, const fs::path& folder) {
+  return m.name + " ended with " + tongue::runner::describe_status(m.status.value_or(-1)) +
+         " (see " + (folder / (m.name + ".err")).string() + ")";
+}
+
+// One run in folder on the given port; throws std::runtime_error when it fails.
+Figures run_once(const Scenario& s, int threads, int port, const fs::path& folder) {
+  fs::create_directories(folder);
+  const fs::path scene = folder / "scene.yaml";
+  write_scene_copy(fs::path(TONGUE_SOURCE_DIR) / s.scene, threads, scene);
+  const std::string url = tongue::bus::default_lcm_url_on_port(port);
+  const tongue::bus::Channels channels(kPrefix);
+  const double dt = tongue::scene::read_scene(scene.string()).analysis.dt;  // s
+  const long steps = std::lround(s.duration / dt);
+  const fs::path run_file = folder / "run.h5";
+
+  Member server{"sim_server",
+                {SIM_SERVER_PATH, scene.string(), "--lcm-url", url, "--prefix", kPrefix, "--mode",
+                 "lockstep", "--output", run_file.string(), "--max-steps", std::to_string(steps)}};
+  Member controller{"controller", s.controller};
+  for (const std::string& a :
+       {std::string("--lcm-url"), url, std::string("--prefix"), std::string(kPrefix),
+        std::string("--max-steps"), std::to_string(steps), std::string("--mode"),
+        std::string("lockstep")}) {
+    controller.argv.push_back(a);
+  }
+
+  // Watching before anything starts, so that no state is missed.
+  tongue::runner::StateWatcher watcher(url, channels.state);
+  const Clock::time_point began = Clock::now();
+  tongue::runner::start(server, folder, folder);
+  // The controller starts once state 0 is out, as the runner starts it.
+  while (!watcher.last_step() && server.process->running() && seconds_since(began) < kRunTimeout)
+    watcher.poll(50);
+  if (watcher.last_step()) tongue::runner::start(controller, folder, folder);
+  while (server.process->running() && seconds_since(began) < kRunTimeout) watcher.poll(50);
+  tongue::runner::stop(server, 0.0, SIGTERM, "SIGTERM");
+  const double run_wall = seconds_since(began);
+  tongue::runner::stop(controller, 5.0, SIGTERM, "SIGTERM");
+
+  if (!tongue::runner::succeeded(*server.status))
+    throw std::runtime_error(failure_text(server, folder));
+  if (!controller.process) throw std::runtime_error("sim_server sent no state 0");
+  if (!tongue::runner::succeeded(*controller.status))
+    throw std::runtime_error(failure_text(controller, folder));
+  if (watcher.steps_per_second() <= 0.0) throw std::runtime_error("too few states on the bus");
+
+  const tongue::runner::RunFigures rf = tongue::runner::read_run_figures(run_file);
+  const tongue::run_file::RunFileReader h5(run_file.string());
+  Figures f;
+  f.steps = rf.steps;
+  f.simulated = rf.simulated;
+  f.run_wall = run_wall;
+  f.rtf_bus = watcher.steps_per_second() * dt;
+  f.physics = timing_attribute(h5, "timing_physics_ms");
+  f.run_file = timing_attribute(h5, "timing_run_file_ms");
+  f.state_message = timing_attribute(h5, "timing_state_message_ms");
+  f.loop = timing_attribute(h5, "timing_loop_ms");
+  f.server = f.physics + f.run_file + f.state_message + f.loop;
+  // The server's span holds the steps and the N - 1 waits between them; the first wait (for the
+  // controller to start) is before it.
+  const double span = timing_attribute(h5, "timing_span_s");
+  f.rtf = f.simulated / span;
+  f.wall_step = 1e3 * span / f.steps;
+  f.round_trip = (1e3 * span - f.steps * f.server) / (f.steps - 1);
+  return f;
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+// The median of each figure over the runs.
+Figures medians(const std::vector<Figures>& runs) {
+  const auto of = [&runs](double Figures::*field) {
+    std::vector<double> v;
+    for (const Figures& r : runs) v.push_back(r.*field);
+    return median(v);
+  };
+  Figures m;
+  for (double Figures::*field :
+       {&Figures::steps, &Figures::simulated, &Figures::run_wall, &Figures::rtf, &Figures::rtf_bus,
+        &Figures::physics, &Figures::run_file, &Figures::state_message, &Figures::loop,
+        &Figures::server, &Figures::wall_step, &Figures::round_trip}) {
+    m.*field = of(field);
+  }
+  return m;
+}
+
+int parse_runs(int argc, char** argv) {
+  int runs = 3;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a == "--runs" && i + 1 < argc) {
+      runs = std::atoi(argv[++i]);
+    } else {
+      std::fprintf(stderr, "usage: closed_loop_benchmark [--runs K]\n");
+      std::exit(2);
+    }
+  }
+  if (runs < 1) {
+    std::fprintf(stderr, "closed_loop_benchmark: --runs must be >= 1\n");
+    std::exit(2);
+  }
+  return runs;
+}
+
+void print_header(int runs) {
+  std::printf(
+      "closed loop, lock-step, one controller process; medians of %d run%s; per step in ms\n"
+      "%-10s %7s %5s %6s %6s %6s %7s | %7s %7s %7s %7s %7s | %7s %7s\n",
+      runs, runs == 1 ? "" : "s", "scenario", "threads", "steps", "sim_s", "wall_s", "RTF",
+      "RTF_bus", "physics", "runfile", "state", "loop", "server", "wall", "bus_rt");
+}
+
+void print_row(const char* name, int threads, const Figures& f) {
+  std::printf(
+      "%-10s %7d %5.0f %6.3f %6.2f %6.3f %7.3f | %7.2f %7.3f %7.3f %7.3f %7.2f | %7.2f %7.2f\n",
+      name, threads, f.steps, f.simulated, f.run_wall, f.rtf, f.rtf_bus, f.physics, f.run_file,
+      f.state_message, f.loop, f.server, f.wall_step, f.round_trip);
+  std::fflush(stdout);
+}
+
+const char* const kLegend =
+    "sim_s: simulated s; wall_s: sim_server's start to its end (settling included);\n"
+    "RTF: sim_s / the server's span (first step's start to last step's end, timing_span_s);\n"
+    "RTF_bus: the same from the driven states this program saw on the bus;\n"
+    "physics (SceneRun::step), runfile (the frame), state (build and publish the message), loop\n"
+    "(record the messages) and server (their sum): the run file's timing_*_ms, mean per step;\n"
+    "wall: span / steps; bus_rt: (span - steps x server) / (steps - 1), the wait between steps\n"
+    "(the state to the controller, its turn, the activation back)\n";
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int runs = parse_runs(argc, argv);
+  const fs::path root =
+      fs::temp_directory_path() / ("closed_loop_benchmark-" + std::to_string(::getpid()));
+  try {
+    print_header(runs);
+    int turn = 0;
+    for (const Scenario& s : scenarios()) {
+      for (const int threads : {1, 2}) {
+        std::vector<Figures> figures;
+        for (int k = 0; k < runs; ++k, ++turn) {
+          // Ports in turn, so that a run never hears a straggler of the one before.
+          const fs::path folder = root / (std::string(s.name) + "-t" + std::to_string(threads) +
+                                          "-" + std::to_string(k));
+          figures.push_back(run_once(s, threads, kFirstPort + turn % kPorts, folder));
+        }
+        print_row(s.name, threads, medians(figures));
+      }
+    }
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "closed_loop_benchmark: %s (runs kept in %s)\n", e.what(), root.c_str());
+    return 1;
+  }
+  fs::remove_all(root);
+  std::printf("%s", kLegend);
+  return 0;
+}
