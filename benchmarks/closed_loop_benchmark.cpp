@@ -5,14 +5,15 @@
 //               --schedule controllers/sequences/sg_3n_relax.yaml, 0.32 s
 // each with the scene's solver threads set to 1 and to 2 (a copy of the scene with
 // `solver: {threads: N}`). Per run: the steps, simulated s, wall s of the run (sim_server's start
-// to its end, settling included), the closed-loop real-time factor (simulated s per wall s between
-// the first and the last driven state this program sees on the bus), the server's own per-step
+// to its end, settling included), the closed-loop real-time factor (simulated s over the server's
+// span from its first step's start to its last one's end, timing_span_s; and the same from the
+// first and the last driven state this program sees on the bus), the server's own per-step
 // figures from the run file's timing attributes (physics, run file, state message, loop), and the
-// bus round trip: the wall time per step minus the server's own time per step (the state's way
-// to the controller, its answer, and the activation's way back).
+// bus round trip: the span's time outside the server's steps per wait between two steps (the
+// state's way to the controller, its answer, and the activation's way back).
 //
 // Usage: closed_loop_benchmark [--runs K]   (default 3: medians of K runs per row)
-// Uses ports 7795-7799. Build in Release; with K = 3 it takes a few minutes.
+// Uses ports 7795-7799. Build in Release; with K = 3 it takes about 30 s.
 
 #include <signal.h>
 #include <unistd.h>
