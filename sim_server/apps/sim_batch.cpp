@@ -24,7 +24,7 @@
 #include "fem/assembly/ellipticity_monitor.hpp"
 #include "fem/integrator/static_solver.hpp"
 #include "model/default_tongue.hpp"
-#include "run_file/run_file_writer.hpp"
+#include "run_file/run_file_queue.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_reader.hpp"
 #include "scene_run/scene_run.hpp"
@@ -119,7 +119,9 @@ class BatchRun {
       built_ = std::move(built_scene);
     }
     const fem::SolidModel& solid = *built().solid;
-    if (!output.empty()) log_ = scene_run::open_scene_run_file(output, scene_, built());
+    if (!output.empty())
+      log_ = std::make_unique<run_file::RunFileQueue>(
+          scene_run::open_scene_run_file(output, scene_, built()));
     std::printf(
         "%s: %d nodes, %d hex8, %d free dofs, mass %.4g kg, volume %.4g cm^3, %d muscles, %s "
         "analysis\n",
@@ -137,7 +139,10 @@ class BatchRun {
     const auto start = std::chrono::steady_clock::now();
     int status = kExitError;
     try {
-      status = is_dynamic() ? run_dynamic() : run_static();
+      const int result = is_dynamic() ? run_dynamic() : run_static();
+      // Waits for the queued frames: the summary counts them, and a write error fails the run.
+      if (log_) log_->flush();
+      status = result;
     } catch (const std::exception& e) {
       // E.g. an inverted element in the initial state, or a run file that cannot be written:
       // mark the file, which keeps the frames written so far.
@@ -361,7 +366,7 @@ class BatchRun {
   scene::BuiltScene built_;
   bool quiet_;
   const common::InterruptHandlers& interrupt_;
-  std::unique_ptr<run_file::RunFileWriter> log_;
+  std::unique_ptr<run_file::RunFileQueue> log_;  // written on its own thread
   Tally total_;
   Tally stepping_;  // the dynamic steps alone
   std::string failure_;

@@ -375,17 +375,22 @@ RunFileWriter::~RunFileWriter() {
   // Datasets close before the file (members destroyed in reverse order of declaration).
 }
 
+void RunFileWriter::check_frame(const std::string& path, int num_nodes, int num_muscles,
+                                const Eigen::VectorXd& positions, const MuscleFrame& muscles) {
+  if (positions.size() != 3 * num_nodes)
+    throw std::invalid_argument(path + ": positions have " + std::to_string(positions.size()) +
+                                " entries, expected 3 x " + std::to_string(num_nodes));
+  if (num_muscles > 0) {
+    for (const Eigen::VectorXd* v : {&muscles.activations, &muscles.lengths, &muscles.velocities})
+      if (v->size() != num_muscles)
+        throw std::invalid_argument(path + ": a muscle frame has " + std::to_string(v->size()) +
+                                    " entries, expected " + std::to_string(num_muscles));
+  }
+}
+
 void RunFileWriter::append(double time, const Eigen::VectorXd& positions,
                            const SolverFigures& figures, const MuscleFrame& muscles) {
-  if (positions.size() != 3 * num_nodes_)
-    throw std::invalid_argument(path_ + ": positions have " + std::to_string(positions.size()) +
-                                " entries, expected 3 x " + std::to_string(num_nodes_));
-  if (num_muscles_ > 0) {
-    for (const Eigen::VectorXd* v : {&muscles.activations, &muscles.lengths, &muscles.velocities})
-      if (v->size() != num_muscles_)
-        throw std::invalid_argument(path_ + ": a muscle frame has " + std::to_string(v->size()) +
-                                    " entries, expected " + std::to_string(num_muscles_));
-  }
+  check_frame(path_, num_nodes_, num_muscles_, positions, muscles);
   const QuietErrors quiet;
   const Writer w(path_);
   const auto frame = static_cast<hsize_t>(frames_);

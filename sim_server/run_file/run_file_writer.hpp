@@ -79,6 +79,11 @@ class RunFileWriter {
   void set_attribute(const std::string& name, const std::string& value);
   void flush();
 
+  // The check append makes before writing anything, for a caller that holds the sizes itself
+  // (RunFileQueue checks a frame on its caller's thread, without the writer).
+  static void check_frame(const std::string& path, int num_nodes, int num_muscles,
+                          const Eigen::VectorXd& positions, const MuscleFrame& muscles);
+
   int frames() const { return frames_; }
   int num_nodes() const { return num_nodes_; }
   int num_muscles() const { return num_muscles_; }

@@ -74,7 +74,8 @@ ServerLoop::ServerLoop(const scene::Scene& scene, scene::BuiltScene built, bus::
   check_options(options_);
   node_indices_ = select_nodes(run_.built().solid->mesh(), options_.nodes, scene.source);
   if (!options_.output.empty())
-    log_ = scene_run::open_scene_run_file(options_.output, scene, run_.built());
+    log_ = std::make_unique<run_file::RunFileQueue>(
+        scene_run::open_scene_run_file(options_.output, scene, run_.built()));
 }
 
 ServerLoop::~ServerLoop() = default;

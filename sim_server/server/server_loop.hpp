@@ -40,7 +40,7 @@
 #include "bus/command.hpp"
 #include "bus/server_bus.hpp"
 #include "common/rate_limited_reporter.hpp"
-#include "run_file/run_file_writer.hpp"
+#include "run_file/run_file_queue.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene_run/scene_run.hpp"
@@ -97,7 +97,7 @@ class ServerLoop {
   bus::ServerBus& bus_;
   ServerOptions options_;
   std::function<bool()> stop_requested_;
-  std::unique_ptr<run_file::RunFileWriter> log_;
+  std::unique_ptr<run_file::RunFileQueue> log_;
   std::vector<int> node_indices_;  // nodes the states carry
   common::RateLimitedReporter overrun_reports_;
   StepTiming timing_;
