@@ -15,6 +15,7 @@ SceneRun::SceneRun(const scene::Scene& scene, scene::BuiltScene built)
   levels_ = fem::Vector::Zero(num_muscles());
   initial_u_ = fem::Vector::Zero(built_.solid->num_dofs());
   u_ = v_ = initial_u_;
+  frame_ = scene_muscle_frame(built_, u_, &v_);
 }
 
 SceneRun::~SceneRun() = default;
@@ -47,6 +48,7 @@ void SceneRun::accept() {
   u_ = integrator_->displacement();
   v_ = integrator_->velocity();
   time_ = integrator_->time();
+  frame_ = scene_muscle_frame(built_, u_, &v_);
 }
 
 StepResult SceneRun::step(double dt, const fem::Vector& levels) {
@@ -56,18 +58,27 @@ StepResult SceneRun::step(double dt, const fem::Vector& levels) {
                                 " activation levels for " + std::to_string(num_muscles()) +
                                 " muscles");
   StepResult result;
+  if (levels == levels_ && integrator_->at_rest()) {
+    // Nothing acts that did not act in the last step, and that one was in equilibrium: the
+    // identity, with the state, its muscle frame and its stability unchanged.
+    result.report = integrator_->hold(dt);
+    time_ = integrator_->time();
+    ++step_;
+    result.muscles = frame_;
+    return result;
+  }
   if (built_.muscles) built_.muscles->set_activations(levels);
   result.report = integrator_->step(dt);
   if (!result.report.converged) {
     // The state stays at the last accepted step, and so do the levels that led to it.
     if (built_.muscles) built_.muscles->set_activations(levels_);
-    result.muscles = muscle_frame();
+    result.muscles = frame_;
     return result;
   }
   levels_ = levels;
   accept();
   ++step_;
-  result.muscles = muscle_frame();
+  result.muscles = frame_;
   result.ellipticity_loss = ellipticity_.first_loss(u_);
   if (result.ellipticity_loss)
     result.material_warning = fem::describe(*result.ellipticity_loss, built_.solid->material());
@@ -76,10 +87,6 @@ StepResult SceneRun::step(double dt, const fem::Vector& levels) {
 
 fem::Vector SceneRun::positions() const {
   return built_.solid->rest_positions() + u_;
-}
-
-run_file::MuscleFrame SceneRun::muscle_frame() const {
-  return scene_muscle_frame(built_, u_, &v_);
 }
 
 }  // namespace tongue::scene_run

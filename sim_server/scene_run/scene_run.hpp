@@ -58,8 +58,9 @@ class SceneRun {
 
   // Advances by dt [s] with the activation levels [1] of every muscle (num_muscles() entries,
   // each in [0, 1]; callers validate them with their own messages first) acting during the step.
-  // Throws std::invalid_argument for levels of the wrong size or out of range, std::logic_error
-  // before start().
+  // A step with the last step's levels from a state at rest is the identity and costs nothing
+  // (fem::NewmarkIntegrator::at_rest; report.held). Throws std::invalid_argument for levels of the
+  // wrong size or out of range, std::logic_error before start().
   StepResult step(double dt, const fem::Vector& levels);
 
   const scene::Scene& scene() const { return scene_; }
@@ -77,8 +78,9 @@ class SceneRun {
   // The integrator, read-only, for diagnostics that look inside a step (its acceleration, its
   // Newton solver's settings); valid after start().
   const fem::NewmarkIntegrator& integrator() const { return *integrator_; }
-  // The muscles' frame at the current state (what step() returns; at step 0: all activations 0).
-  run_file::MuscleFrame muscle_frame() const;
+  // The muscles' frame at the current state (what step() returns; at step 0: all activations 0),
+  // computed once per accepted state.
+  const run_file::MuscleFrame& muscle_frame() const { return frame_; }
 
  private:
   const scene::Scene& scene_;
@@ -92,6 +94,7 @@ class SceneRun {
                        // integrator at a substep)
   double time_ = 0.0;  // s
   fem::Vector levels_;
+  run_file::MuscleFrame frame_;  // of u_, v_ and levels_
   std::int64_t step_ = 0;
 };
 

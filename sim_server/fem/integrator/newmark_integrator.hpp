@@ -52,6 +52,17 @@ class NewmarkIntegrator {
   // left at the last accepted substep.
   StepReport step(double dt);
 
+  // At rest: the last step was in equilibrium from its start (Newton accepted its predictor
+  // without iterating: the residual, and with it M a, within the residual test) and no free node
+  // moves faster than kRestSpeed. Under unchanged loads a step from such a state would move no
+  // node by more than dt kRestSpeed (4 nm at dt 4 ms): hold(dt) takes it as the identity, only
+  // the time advancing, without evaluating anything. Whether the loads are unchanged is the
+  // caller's knowledge (e.g. the same muscle activations); any step() ends the rest.
+  static constexpr double kRestSpeed = 1e-6;  // [m/s]
+  bool at_rest() const;
+  // Throws std::logic_error when !at_rest().
+  StepReport hold(double dt);
+
   const Vector& displacement() const { return u_; }
   const Vector& velocity() const { return v_; }
   const Vector& acceleration() const { return a_; }
@@ -76,6 +87,7 @@ class NewmarkIntegrator {
   double t_ = 0.0;
   double last_dt_ = 0.0;
   bool initialized_ = false;
+  bool in_equilibrium_ = false;  // the last step() converged without a Newton iteration
 };
 
 }  // namespace tongue::fem

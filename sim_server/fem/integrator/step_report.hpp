@@ -22,6 +22,9 @@ struct StepReport {
   double max_shift = 0.0;         // largest regularizing shift of the tangent (0: none)
   double wall_seconds = 0.0;
   double assembly_seconds = 0.0, factorization_seconds = 0.0, solve_seconds = 0.0;
+  double error_estimate =
+      0.0;              // Newton's estimate of the error left in u, largest over substeps [m]
+  bool held = false;    // taken as the identity from a state at rest (nothing evaluated)
   std::string message;  // why a cut happened or why the step failed; empty when clean
   int newton_solves = 0;
 
@@ -32,6 +35,7 @@ struct StepReport {
     factorizations += newton.factorizations;
     residual_evaluations += newton.residual_evaluations;
     final_residual = newton.final_residual;
+    error_estimate = std::max(error_estimate, newton.error_estimate);
     max_shift = std::max(max_shift, newton.max_shift);
     assembly_seconds += newton.assembly_seconds;
     factorization_seconds += newton.factorization_seconds;

@@ -19,6 +19,14 @@ struct NewtonSettings {
   double residual_atol = 1e-9;  // [N]
   double increment_rtol = 1e-6;
   double increment_atol = 1e-12;  // [m]
+  // When > 0, convergence is judged by the error left in x instead of the two tests above:
+  // converged when the estimated distance to the solution after a correction dx,
+  // rho / (1 - rho) ||dx||_inf with rho the contraction of the corrections (measured in this
+  // solve; for its first correction the one carried over from the previous solve with the same
+  // factor, at least 1/2), is at most this [m]. Such a correction is taken without evaluating
+  // the residual after it (final_residual is then the one before it). The initial guess is
+  // still accepted as it is when its residual passes the residual test.
+  double displacement_tolerance = 0.0;
   int max_iterations = 25;
   bool line_search = true;
   // Modified Newton: a factorization may serve up to this many iterations (0: full Newton),
@@ -39,11 +47,13 @@ struct NewtonReport {
   int residual_evaluations = 0;
   double initial_residual = 0.0;  // ||r_0|| [N]
   double force_scale = 0.0;       // F of the convergence test [N]
-  double final_residual = 0.0;    // [N]
+  double final_residual = 0.0;    // at the last iterate evaluated [N]
   double last_increment = 0.0;    // [m]
+  double error_estimate = 0.0;    // estimated error left in x [m] (inf: unknown; 0: no iteration)
   double max_shift = 0.0;         // largest tangent shift the factorization needed (0: none)
   std::vector<double> residual_history;
-  std::string failure;  // why it did not converge
+  bool start_evaluable = true;  // false: the residual could not be evaluated at the initial guess
+  std::string failure;          // why it did not converge
   double assembly_seconds = 0.0, factorization_seconds = 0.0, solve_seconds = 0.0;
 };
 
@@ -51,8 +61,10 @@ class NewtonSolver {
  public:
   NewtonSolver(std::shared_ptr<const SparsityPattern> pattern, NewtonSettings settings);
 
-  // Iterates from x (updated in place; on failure x holds the last iterate).
-  NewtonReport solve(NonlinearProblem& problem, Vector& x);
+  // Iterates from x (updated in place; on failure x holds the last iterate). The increment test
+  // measures the error left against ||x - origin||, origin defaulting to the initial guess: a
+  // caller starting from a predicted x passes the state the prediction started from.
+  NewtonReport solve(NonlinearProblem& problem, Vector& x, const Vector* origin = nullptr);
   // Forces a fresh tangent at the next iteration (the problem's tangent changed, e.g. new dt).
   void invalidate_factor() { forget_factor(); }
 
@@ -64,14 +76,31 @@ class NewtonSolver {
   SymmetricMatrix tangent_;
   CholmodSolver linear_solver_;
   int factor_age_ = -1;  // iterations served by the current factor; -1 when none
+  // ||dx_k+1||_inf / ||dx_k||_inf last measured with the current factor; < 0 when unknown.
+  double contraction_ = -1.0;
   // BFGS pairs since the last factorization: s = x_k+1 - x_k, y = r_k+1 - r_k, 1 / (y . s).
   struct Update {
     Vector s, y;
     double inverse_curvature;
   };
   std::vector<Update> updates_;
+  // Counts and times the residual evaluations of one solve.
+  struct Residuals {
+    NonlinearProblem& problem;
+    NewtonReport& report;
+    bool operator()(const Vector& at, Vector& out) const;
+  };
   // -H r: the factor's solve, corrected by the BFGS updates.
   Vector direction(const Vector& r) const;
+  // Forms and factorizes the tangent at x (and the residual r with it); false with
+  // report.failure set when either fails.
+  bool refactorize(NonlinearProblem& problem, const Vector& x, Vector& r, NewtonReport& report);
+  // Keeps the BFGS pair (s, y), the oldest one dropped beyond quasi_newton_updates.
+  void remember(Vector s, Vector y);
+  // Chooses eta along dx from x; x_trial = x + eta dx and r_trial its residual. 0 when no step
+  // along dx can be evaluated.
+  double line_search(const Residuals& evaluate, const Vector& x, const Vector& dx, const Vector& r,
+                     Vector& x_trial, Vector& r_trial) const;
   void forget_factor();
 };
 

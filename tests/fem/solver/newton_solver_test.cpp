@@ -225,6 +225,41 @@ TEST(NewtonSolver, AcceptsAStartInEquilibriumWithTheForcesActingAndIteratesOther
   }
 }
 
+// Judged by the displacement, a solve stops where the error left in x (the distance to the
+// root, largest component) is within the tolerance: the estimate from the contraction of the
+// corrections bounds the true error, for a reused factor (linear convergence) and across solves
+// (the first correction of a solve judged with the contraction carried over, at least 1/2).
+TEST(NewtonSolver, DisplacementToleranceBoundsTheErrorLeftInX) {
+  for (const double tolerance : {1e-3, 1e-5, 1e-7, 1e-9}) {  // m
+    SpringChain problem;
+    NewtonSettings settings = tight();
+    settings.displacement_tolerance = tolerance;
+    settings.max_tangent_reuse = 100;
+    settings.max_iterations = 100;
+    NewtonSolver newton(problem.pattern(), settings);
+    const auto error = [](const Vector& x) {
+      return (x - SpringChain::root()).lpNorm<Eigen::Infinity>();
+    };
+    Vector x = Vector::Zero(SpringChain::kSize);
+    const NewtonReport first = newton.solve(problem, x);
+    ASSERT_TRUE(first.converged) << first.failure;
+    EXPECT_LE(first.error_estimate, tolerance);
+    EXPECT_LE(error(x), tolerance) << "tolerance " << tolerance;
+    EXPECT_GT(error(x), 0.0);  // not to round-off: it stopped early, as asked
+
+    // A nearby start on the same factor: the error is again within the tolerance, and fewer
+    // corrections than from x = 0 were needed.
+    for (const double offset : {10 * tolerance, 1e3 * tolerance}) {
+      Vector near = SpringChain::root() + Vector::Constant(SpringChain::kSize, offset);
+      const NewtonReport again = newton.solve(problem, near);
+      ASSERT_TRUE(again.converged) << again.failure;
+      EXPECT_EQ(again.factorizations, 0);
+      EXPECT_LE(error(near), tolerance) << "tolerance " << tolerance << ", offset " << offset;
+      EXPECT_LT(again.iterations, first.iterations);
+    }
+  }
+}
+
 // BFGS updates on a reused factor (Matthies & Strang 1979) reach the root in fewer iterations
 // than the plain reused factor, and as accurately.
 TEST(NewtonSolver, QuasiNewtonUpdatesSpeedUpAReusedFactor) {
