@@ -237,6 +237,7 @@ class BatchRun {
       total_.cuts += r.report.cuts;
       stepping_.add(r.report);
       step_line(s + 1, r.report.time, r.report);
+      if (r.ellipticity_loss) material_warning(*r.ellipticity_loss);
       if (!r.report.converged) {
         failure_ = r.report.message;
         std::fprintf(stderr,
@@ -246,12 +247,12 @@ class BatchRun {
       }
       simulated_ = run.time();
       track(run.displacement());
-      if (r.ellipticity_loss) material_warning(run.time(), r.material_warning);
       if ((s + 1) % every == 0 || s + 1 == count) {
         write_frame(run.time(), run.displacement(), r.muscles, since_frame.figures());
         since_frame = Tally{};
       }
     }
+    if (const auto last = run.finish_checks()) material_warning(*last);
     return kExitOk;
   }
 
@@ -264,6 +265,9 @@ class BatchRun {
   const scene::BuiltScene& built() const { return run_ ? run_->built() : built_; }
 
   // Says once, on stderr and in the run file, when the material first loses strong ellipticity.
+  void material_warning(const scene_run::EllipticityFinding& found) {
+    material_warning(found.time, found.warning);
+  }
   void material_warning(double t, const std::string& text) {
     std::fprintf(stderr, "sim_batch: warning: at t = %.6g s %s\n", t, text.c_str());
     if (log_) log_->set_attribute("material_warning", "t = " + std::to_string(t) + " s: " + text);

@@ -37,14 +37,21 @@ void LcmServerBus::on_message(const lcm::ReceiveBuffer* rbuf, const std::string&
   subscriber->bus->queue_.push_back(std::move(message));
 }
 
+template <typename Message>
+void LcmServerBus::publish(const std::string& channel, const Message& msg) {
+  const int size = msg.getEncodedSize();
+  encoded_.resize(static_cast<std::size_t>(size));  // no reallocation once it has grown
+  if (msg.encode(encoded_.data(), 0, size) != size ||
+      lcm_.publish(channel, encoded_.data(), static_cast<unsigned>(size)) != 0)
+    throw std::runtime_error("cannot publish on " + channel);
+}
+
 void LcmServerBus::publish_model(const tongue_lcm::lcmt_tongue_model& msg) {
-  if (lcm_.publish(channels_.model, &msg) != 0)
-    throw std::runtime_error("cannot publish on " + channels_.model);
+  publish(channels_.model, msg);
 }
 
 void LcmServerBus::publish_state(const tongue_lcm::lcmt_tongue_state& msg) {
-  if (lcm_.publish(channels_.state, &msg) != 0)
-    throw std::runtime_error("cannot publish on " + channels_.state);
+  publish(channels_.state, msg);
 }
 
 std::vector<IncomingMessage> LcmServerBus::receive(int timeout_ms) {

@@ -1,7 +1,9 @@
 #pragma once
 // ServerBus on an lcm::LCM: raw subscriptions on the activation and command channels (their bytes
 // go to decode_activation and decode_command, never straight to lcm-gen's decoder), publications
-// on the state and model channels.
+// on the state and model channels. A message is encoded into one buffer kept for the bus's
+// life (lcm::LCM::publish of a message would allocate one per call) and its bytes published.
+#include <cstdint>
 #include <deque>
 #include <string>
 #include <vector>
@@ -29,6 +31,8 @@ class LcmServerBus final : public ServerBus {
     LcmServerBus* bus;
     IncomingMessage::Channel channel;
   };
+  template <typename Message>
+  void publish(const std::string& channel, const Message& msg);
   static void on_message(const lcm::ReceiveBuffer* rbuf, const std::string& channel,
                          Subscriber* subscriber);
 
@@ -37,6 +41,7 @@ class LcmServerBus final : public ServerBus {
   Subscriber activation_{this, IncomingMessage::Channel::activation};
   Subscriber command_{this, IncomingMessage::Channel::command};
   std::deque<IncomingMessage> queue_;
+  std::vector<std::uint8_t> encoded_;  // the last message published, encoded
 };
 
 }  // namespace tongue::bus

@@ -1,12 +1,13 @@
 #include "run_file/run_file_queue.hpp"
 
 #include <pthread.h>
+#include <sched.h>
 #include <signal.h>
 
+#include <algorithm>
 #include <condition_variable>
 #include <cstdint>
 #include <cstdio>
-#include <deque>
 #include <exception>
 #include <mutex>
 #include <stdexcept>
@@ -14,6 +15,7 @@
 #include <type_traits>
 #include <utility>
 #include <variant>
+#include <vector>
 
 namespace tongue::run_file {
 
@@ -31,16 +33,27 @@ struct Attribute {
 struct Flush {};
 using Item = std::variant<Frame, Attribute, Flush>;
 
+// Copies from into to, reusing to's storage when the sizes match (a recycled frame).
+void copy_into(Eigen::VectorXd& to, const Eigen::VectorXd& from) {
+  to.resize(from.size());  // no reallocation at the same size
+  to = from;
+}
+
 }  // namespace
 
 struct RunFileQueue::State {
   std::unique_ptr<RunFileWriter> writer;  // the worker's alone
   std::size_t capacity = 1;
+  std::size_t batch = 1;  // frames queued that wake the worker before its poll
 
   mutable std::mutex mutex;
-  std::condition_variable to_worker;  // an item queued, or closing
+  std::condition_variable to_worker;  // a batch, an attribute or flush, a full queue, closing
   std::condition_variable to_caller;  // room in the queue, or an item done
-  std::deque<Item> items;
+  // The queue: a ring of `capacity` slots, so that queuing allocates nothing.
+  std::vector<Item> ring;
+  std::size_t head = 0, size = 0;
+  std::vector<Frame> spare;  // frames written, their buffers kept for the next appends
+  bool urgent = false;       // something waits for the worker: wake it now
   std::uint64_t queued = 0;  // items ever queued
   std::uint64_t done = 0;    // items the worker has finished
   int written = 0;           // the writer's frames()
@@ -50,26 +63,37 @@ struct RunFileQueue::State {
   std::thread worker;
 
   void run() {
+    // SCHED_BATCH (sched(7)): the worker's wake-ups (its poll, a batch) do not preempt the
+    // caller's thread; it keeps its fair share of the CPU. A refusal only loses that.
+    const sched_param batch_policy{};
+    pthread_setschedparam(pthread_self(), SCHED_BATCH, &batch_policy);
     std::unique_lock lock(mutex);
     while (true) {
-      to_worker.wait(lock, [&] { return !items.empty() || closing; });
-      if (items.empty()) break;  // closing, and drained
-      Item item = std::move(items.front());
-      items.pop_front();
-      to_caller.notify_all();
-      lock.unlock();
-      std::exception_ptr failed;
-      try {
-        apply(item);
-      } catch (...) {
-        failed = std::current_exception();
+      // Asleep until a batch is ready, someone waits, or the poll interval has passed: a
+      // frame waits at most about kPollInterval, and the caller's append rarely wakes anyone.
+      to_worker.wait_for(lock, kPollInterval, [&] { return size >= batch || urgent || closing; });
+      urgent = false;
+      if (size == 0 && closing) break;  // drained
+      while (size > 0) {
+        Item item = std::move(ring[head]);
+        head = (head + 1) % capacity;
+        --size;
+        to_caller.notify_all();
+        lock.unlock();
+        std::exception_ptr failed;
+        try {
+          apply(item);
+        } catch (...) {
+          failed = std::current_exception();
+        }
+        const int frames = writer->frames();
+        lock.lock();
+        if (Frame* f = std::get_if<Frame>(&item)) spare.push_back(std::move(*f));
+        if (failed && !error) error = failed;
+        written = frames;
+        ++done;
+        to_caller.notify_all();
       }
-      const int frames = writer->frames();
-      lock.lock();
-      if (failed && !error) error = failed;
-      written = frames;
-      ++done;
-      to_caller.notify_all();
     }
     lock.unlock();
     writer.reset();  // closes the file here too: the destructor calls HDF5
@@ -99,13 +123,30 @@ struct RunFileQueue::State {
     if (closed) throw std::logic_error(path + ": the run file is closed");
   }
 
-  // Queues item once there is room; returns its number.
+  // A frame buffer for the next append: a recycled one when the worker has written one.
+  Frame take_spare() {
+    const std::lock_guard lock(mutex);
+    if (spare.empty()) return Frame{};
+    Frame f = std::move(spare.back());
+    spare.pop_back();
+    return f;
+  }
+
+  // Queues item once there is room; returns its number. Wakes the worker only when the item
+  // is not a frame, a batch is ready, or the queue is full (the caller then waits for room).
   std::uint64_t push(Item item, const std::string& path) {
     std::unique_lock lock(mutex);
     check(lock, path);
-    to_caller.wait(lock, [&] { return items.size() < capacity; });
-    items.push_back(std::move(item));
-    to_worker.notify_one();
+    if (size == capacity) {
+      urgent = true;
+      to_worker.notify_one();
+      to_caller.wait(lock, [&] { return size < capacity; });
+    }
+    const bool frame = std::holds_alternative<Frame>(item);
+    ring[(head + size) % capacity] = std::move(item);
+    ++size;
+    if (!frame) urgent = true;
+    if (urgent || size == batch) to_worker.notify_one();
     return ++queued;
   }
 
@@ -136,6 +177,10 @@ RunFileQueue::RunFileQueue(std::unique_ptr<RunFileWriter> writer, std::size_t ca
   s_->written = writer->frames();
   s_->writer = std::move(writer);
   s_->capacity = capacity;
+  s_->batch = std::max<std::size_t>(1, capacity / kBatchDivisor);
+  s_->ring.resize(capacity);
+  // Every frame there can be: those queued, the one being written, the one being filled.
+  s_->spare.reserve(capacity + 2);
   // Starting the thread orders every HDF5 call made on this thread so far before the worker's.
   // The worker blocks every signal (it inherits the mask it is started with): a SIGINT must
   // land on the caller's threads and interrupt their waits at once, as it does without a queue.
@@ -164,10 +209,17 @@ RunFileQueue::~RunFileQueue() {
   }
 }
 
-void RunFileQueue::append(double time, Eigen::VectorXd positions, SolverFigures figures,
-                          MuscleFrame muscles) {
+void RunFileQueue::append(double time, const Eigen::VectorXd& positions,
+                          const SolverFigures& figures, const MuscleFrame& muscles) {
   RunFileWriter::check_frame(path_, num_nodes_, num_muscles_, positions, muscles);
-  s_->push(Frame{time, std::move(positions), figures, std::move(muscles)}, path_);
+  Frame f = s_->take_spare();
+  f.time = time;
+  copy_into(f.positions, positions);
+  f.figures = figures;
+  copy_into(f.muscles.activations, muscles.activations);
+  copy_into(f.muscles.lengths, muscles.lengths);
+  copy_into(f.muscles.velocities, muscles.velocities);
+  s_->push(std::move(f), path_);
 }
 
 void RunFileQueue::set_attribute(std::string name, std::string value) {

@@ -4,9 +4,16 @@
 // step pays a copy of its frame instead of the HDF5 writes (extend, compress, write, periodic
 // flush). The file is the same, bit for bit, as the one the writer alone would write.
 //
+// The caller's cost: append copies the frame into a recycled buffer (one the worker has written:
+// once as many frames as ever wait at once exist, appends allocate nothing) and queues it in a
+// ring of `capacity` slots. It does not wake the worker: the worker wakes on its own every
+// kPollInterval, or when capacity / kBatchDivisor frames wait, and then writes everything queued;
+// set_attribute, flush, close and a full queue wake it at once. So a frame waits at most about
+// kPollInterval before the writer has it.
+//
 // Back-pressure: when `capacity` items are waiting, append and set_attribute block until there
 // is room; nothing is ever dropped. A SIGKILL loses what the writer had not flushed (at most
-// about flush_interval) plus what was still queued.
+// about flush_interval) plus what was still queued (at most about kPollInterval of frames).
 //
 // Errors: a RunFileError (or any exception) the writer throws on the worker is rethrown, the
 // same object, to the caller at its next call (append, set_attribute, flush or close), once; the
@@ -21,6 +28,7 @@
 // (a RunFileReader, another writer) meanwhile.
 #include <Eigen/Core>
 
+#include <chrono>
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -32,6 +40,11 @@ namespace tongue::run_file {
 class RunFileQueue {
  public:
   static constexpr std::size_t kDefaultCapacity = 256;
+  // The worker's sleep between two looks at the queue: short against the writer's flush
+  // interval (1 s), long against a step (a few ms), so that it writes frames in batches.
+  static constexpr std::chrono::milliseconds kPollInterval{50};
+  // capacity / kBatchDivisor frames waiting wake the worker before its poll (fast runs).
+  static constexpr std::size_t kBatchDivisor = 4;
 
   // Takes the writer (created and set up on this thread before the worker starts) and starts
   // the worker. capacity >= 1: items (frames, attributes, flushes) that may wait.
@@ -43,9 +56,10 @@ class RunFileQueue {
   RunFileQueue(const RunFileQueue&) = delete;
   RunFileQueue& operator=(const RunFileQueue&) = delete;
 
-  // As RunFileWriter::append, queued. Wrong sizes throw std::invalid_argument here, at once.
-  void append(double time, Eigen::VectorXd positions, SolverFigures figures,
-              MuscleFrame muscles = {});
+  // As RunFileWriter::append, queued (copied). Wrong sizes throw std::invalid_argument here, at
+  // once.
+  void append(double time, const Eigen::VectorXd& positions, const SolverFigures& figures,
+              const MuscleFrame& muscles = {});
   // As RunFileWriter::set_attribute, queued: it lands after the frames queued before it.
   void set_attribute(std::string name, std::string value);
   // Flushes the file after everything queued before, and waits until that is done.

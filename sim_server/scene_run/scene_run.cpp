@@ -65,6 +65,7 @@ StepResult SceneRun::step(double dt, const fem::Vector& levels) {
     time_ = integrator_->time();
     ++step_;
     result.muscles = frame_;
+    result.ellipticity_loss = ellipticity_.collect();  // the last moving state's check
     return result;
   }
   if (built_.muscles) built_.muscles->set_activations(levels);
@@ -73,16 +74,19 @@ StepResult SceneRun::step(double dt, const fem::Vector& levels) {
     // The state stays at the last accepted step, and so do the levels that led to it.
     if (built_.muscles) built_.muscles->set_activations(levels_);
     result.muscles = frame_;
+    result.ellipticity_loss = ellipticity_.collect();
     return result;
   }
   levels_ = levels;
   accept();
   ++step_;
   result.muscles = frame_;
-  result.ellipticity_loss = ellipticity_.first_loss(u_);
-  if (result.ellipticity_loss)
-    result.material_warning = fem::describe(*result.ellipticity_loss, built_.solid->material());
+  result.ellipticity_loss = ellipticity_.check(u_, step_, time_);
   return result;
+}
+
+std::optional<EllipticityFinding> SceneRun::finish_checks() {
+  return ellipticity_.collect();
 }
 
 fem::Vector SceneRun::positions() const {

@@ -16,12 +16,12 @@
 #include <optional>
 #include <string>
 
-#include "fem/assembly/ellipticity_monitor.hpp"
 #include "fem/integrator/newmark_integrator.hpp"
 #include "fem/integrator/static_solver.hpp"
 #include "run_file/run_file_writer.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_builder.hpp"
+#include "scene_run/ellipticity_watch.hpp"
 
 namespace tongue::scene_run {
 
@@ -34,9 +34,10 @@ struct StepResult {
   // without muscles); computed once per step for every consumer (state message, run file).
   run_file::MuscleFrame muscles;
   // The first loss of strong ellipticity of the material, reported once per run (a restart
-  // does not report it again), with describe()'s text for the user.
-  std::optional<fem::EllipticityLoss> ellipticity_loss;
-  std::string material_warning;  // empty unless ellipticity_loss
+  // does not report it again). It is checked off the step's critical path (EllipticityWatch),
+  // so it comes one step late: the result of step k + 1 (converged or not) reports a loss in
+  // the state of step k, and finish_checks() one in the last state. The finding names its step.
+  std::optional<EllipticityFinding> ellipticity_loss;
 };
 
 class SceneRun {
@@ -53,7 +54,8 @@ class SceneRun {
   fem::StaticReport start();
   // Back to the initial state (settled or rest), at rest, time 0, step 0, all activations 0.
   // Nothing carries over (factorizations, previous dt), so a run after a restart repeats the
-  // first one exactly.
+  // first one exactly; only a loss of ellipticity found in the last state before it is still
+  // reported, by the next step (its finding names its step).
   void restart();
 
   // Advances by dt [s] with the activation levels [1] of every muscle (num_muscles() entries,
@@ -62,6 +64,10 @@ class SceneRun {
   // (fem::NewmarkIntegrator::at_rest; report.held). Throws std::invalid_argument for levels of the
   // wrong size or out of range, std::logic_error before start().
   StepResult step(double dt, const fem::Vector& levels);
+  // The check of the last accepted state, which step() reports with the next step's result:
+  // waits for it and returns its finding, if any. For the end of a run, so that a loss in the
+  // last state is not left unsaid.
+  std::optional<EllipticityFinding> finish_checks();
 
   const scene::Scene& scene() const { return scene_; }
   const scene::BuiltScene& built() const { return built_; }
@@ -86,7 +92,7 @@ class SceneRun {
   const scene::Scene& scene_;
   scene::BuiltScene built_;
   std::unique_ptr<fem::NewmarkIntegrator> integrator_;
-  fem::EllipticityMonitor ellipticity_;
+  EllipticityWatch ellipticity_;
   void accept();  // the integrator's state becomes the last accepted one
 
   fem::Vector initial_u_;

@@ -38,7 +38,11 @@ std::optional<bus::Command> ControlInput::take_command() {
 
 void ControlInput::record_activation(const bus::IncomingMessage& message, std::int64_t step,
                                      double now) {
-  tongue_lcm::lcmt_tongue_activation msg;
+  tongue_lcm::lcmt_tongue_activation& msg = activation_;
+  // lcm-gen's decode leaves the arrays alone when the count is 0: emptied first (their storage
+  // stays).
+  msg.names.clear();
+  msg.levels.clear();
   std::string reason;
   if (!bus::decode_activation(message.bytes.data(), static_cast<int>(message.bytes.size()), msg,
                               reason)) {

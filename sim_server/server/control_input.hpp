@@ -63,6 +63,8 @@ class ControlInput {
   std::int64_t rejected_ = 0;
   double last_heard_ = 0.0;
   common::RateLimitedReporter reports_;
+  // The last activation decoded, kept so that the next one is decoded into its storage.
+  tongue_lcm::lcmt_tongue_activation activation_;
 };
 
 }  // namespace tongue::server

@@ -84,7 +84,10 @@ ExitStatus ServerLoop::run() {
   ExitStatus status = common::kExitError;
   try {
     status = loop();
+    // The last state's stability check, which no next step reports.
+    if (const auto last = run_.finish_checks()) warn_material(*last);
   } catch (const std::exception& e) {
+    status = common::kExitError;
     failure_ = e.what();
     std::fprintf(stderr, "sim_server: error: %s\n", e.what());
   }
@@ -329,6 +332,7 @@ void ServerLoop::take_step(const fem::Vector& levels) {
   timing_.start_step(mark);
   last_ = run_.step(dt, levels);
   mark = timing_.add(StepTiming::Part::physics, mark);
+  if (last_.ellipticity_loss) warn_material(*last_.ellipticity_loss);
   if (!last_.report.converged) {
     failure_ = "step " + std::to_string(from + 1) + " failed to converge: " + last_.report.message;
     std::fprintf(stderr, "sim_server: %s; stopping at the last accepted state\n", failure_.c_str());
@@ -338,13 +342,14 @@ void ServerLoop::take_step(const fem::Vector& levels) {
     return;
   }
   if (options_.mode == Mode::realtime) count_overrun(steady_seconds() - finish_by);
-  if (last_.ellipticity_loss) warn_material();
-  if (options_.mode == Mode::lockstep) input_.next_round(run_.levels());
-  mark = timing_.add(StepTiming::Part::loop, mark);
+  // The state first: in lock-step the controller's turn starts with it, and the rest of the
+  // step's work (the run file's frame, the bookkeeping) overlaps that turn.
+  if (should_publish()) publish_state("ok");
+  mark = timing_.add(StepTiming::Part::state_message, mark);
   log_frame();
   mark = timing_.add(StepTiming::Part::run_file, mark);
-  if (should_publish()) publish_state("ok");
-  timing_.end_step(timing_.add(StepTiming::Part::state_message, mark));
+  if (options_.mode == Mode::lockstep) input_.next_round(run_.levels());
+  timing_.end_step(timing_.add(StepTiming::Part::loop, mark));
 }
 
 void ServerLoop::count_overrun(double late) {
@@ -358,11 +363,10 @@ void ServerLoop::count_overrun(double late) {
   overrun_reports_.report("overrun", text);
 }
 
-void ServerLoop::warn_material() {
-  const std::string step = std::to_string(run_.step_count());
-  std::fprintf(stderr, "sim_server: warning: at step %s %s\n", step.c_str(),
-               last_.material_warning.c_str());
-  if (log_) log_->set_attribute("material_warning", "step " + step + ": " + last_.material_warning);
+void ServerLoop::warn_material(const scene_run::EllipticityFinding& found) {
+  const std::string step = std::to_string(found.step);
+  std::fprintf(stderr, "sim_server: warning: at step %s %s\n", step.c_str(), found.warning.c_str());
+  if (log_) log_->set_attribute("material_warning", "step " + step + ": " + found.warning);
 }
 
 void ServerLoop::publish_model() {
@@ -376,14 +380,16 @@ void ServerLoop::publish_state(const std::string& status, bool converged) {
   notes.rejected_messages = input_.rejected();
   notes.overruns = overruns_;
   notes.utime = wall_utime();
-  bus_.publish_state(state_message(run_, node_indices_, last_, notes));
+  fill_state_message(state_, run_, node_indices_, last_, notes);
+  bus_.publish_state(state_);
 }
 
 void ServerLoop::log_frame() {
   if (!log_) return;
   const fem::StepReport& r = last_.report;
-  log_->append(run_.time(), run_.positions(),
-               {r.iterations, r.final_residual, r.wall_seconds, r.cuts}, last_.muscles);
+  positions_.noalias() = run_.built().solid->rest_positions() + run_.displacement();
+  log_->append(run_.time(), positions_, {r.iterations, r.final_residual, r.wall_seconds, r.cuts},
+               last_.muscles);
 }
 
 }  // namespace tongue::server

@@ -28,7 +28,10 @@
 // How it is built: the loop takes the messages one at a time and hands each to ControlInput,
 // which only records what it means (an activation merged into the round or the hold, a command
 // pending, a rejection counted); the loop alone then decides whether a step is due, and steps,
-// logs and publishes. SceneRun does the physics; take_step() is its one caller.
+// logs and publishes. SceneRun does the physics; take_step() is its one caller. After the
+// physics a step publishes its state first, so that in lock-step the controller's turn overlaps
+// the rest (the run file's frame, the bookkeeping); the state message and the frame's positions
+// are kept from step to step, so that a step allocates nothing for them.
 #include <cstdint>
 #include <deque>
 #include <functional>
@@ -85,7 +88,7 @@ class ServerLoop {
   void execute(bus::Command command);
   void take_step(const fem::Vector& levels);
   void count_overrun(double late);  // real-time: late [s] > 0 is an overrun
-  void warn_material();             // the first loss of ellipticity: stderr and run file
+  void warn_material(const scene_run::EllipticityFinding& found);  // stderr and run file
   void publish_model();
   void publish_state(const std::string& status, bool converged = true);
   void log_frame();
@@ -107,6 +110,9 @@ class ServerLoop {
   // The last step's solver figures and muscle frame (at step 0: none, and the initial frame),
   // published again by pause, describe and reset without computing them twice.
   scene_run::StepResult last_;
+  // Kept from step to step, so that a step's state message and run-file frame reuse storage.
+  tongue_lcm::lcmt_tongue_state state_;
+  fem::Vector positions_;  // m, the frame's node positions
 
   std::int64_t overruns_ = 0;
   int resets_ = 0;

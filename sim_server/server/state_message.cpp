@@ -9,6 +9,11 @@ std::vector<double> values(const fem::Vector& v) {
   return std::vector<double>(v.data(), v.data() + v.size());
 }
 
+// v into out, in out's storage once it has grown to v's size.
+void assign(std::vector<double>& out, const fem::Vector& v) {
+  out.assign(v.data(), v.data() + v.size());
+}
+
 }  // namespace
 
 tongue_lcm::lcmt_tongue_model model_message(const scene_run::SceneRun& run, std::int64_t utime) {
@@ -42,26 +47,25 @@ tongue_lcm::lcmt_tongue_model model_message(const scene_run::SceneRun& run, std:
   return msg;
 }
 
-tongue_lcm::lcmt_tongue_state state_message(const scene_run::SceneRun& run,
-                                            const std::vector<int>& nodes,
-                                            const scene_run::StepResult& last,
-                                            const StateNotes& notes) {
-  tongue_lcm::lcmt_tongue_state msg;
+void fill_state_message(tongue_lcm::lcmt_tongue_state& msg, const scene_run::SceneRun& run,
+                        const std::vector<int>& nodes, const scene_run::StepResult& last,
+                        const StateNotes& notes) {
   msg.utime = notes.utime;
   msg.step = run.step_count();
   msg.time = run.time();
   msg.num_nodes = static_cast<std::int32_t>(nodes.size());
-  msg.node_indices = nodes;
+  msg.node_indices.assign(nodes.begin(), nodes.end());
   const fem::Vector& rest = run.built().solid->rest_positions();
   const fem::Vector& u = run.displacement();
-  msg.positions.reserve(3 * nodes.size());
+  msg.positions.resize(3 * nodes.size());
+  double* p = msg.positions.data();
   for (const int i : nodes)
-    for (int c = 0; c < 3; ++c) msg.positions.push_back(rest[3 * i + c] + u[3 * i + c]);
+    for (int c = 0; c < 3; ++c) *p++ = rest[3 * i + c] + u[3 * i + c];
   msg.num_positions = static_cast<std::int32_t>(msg.positions.size());
   msg.num_muscles = static_cast<std::int32_t>(last.muscles.lengths.size());
-  msg.muscle_lengths = values(last.muscles.lengths);
-  msg.muscle_velocities = values(last.muscles.velocities);
-  msg.activations = values(last.muscles.activations);
+  assign(msg.muscle_lengths, last.muscles.lengths);
+  assign(msg.muscle_velocities, last.muscles.velocities);
+  assign(msg.activations, last.muscles.activations);
   msg.newton_iterations = last.report.iterations;
   msg.residual_norm = last.report.final_residual;
   msg.step_wall_time = last.report.wall_seconds;
@@ -70,7 +74,6 @@ tongue_lcm::lcmt_tongue_state state_message(const scene_run::SceneRun& run,
   msg.status = notes.status;
   msg.rejected_messages = notes.rejected_messages;
   msg.overruns = notes.overruns;
-  return msg;
 }
 
 }  // namespace tongue::server

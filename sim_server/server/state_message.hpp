@@ -22,11 +22,12 @@ struct StateNotes {
   std::int64_t utime = 0;  // wall-clock microseconds
 };
 
-// The state of run's last accepted step: the positions of nodes (node indices), last's solver
-// figures and muscle frame (lengths and velocities as step() computed them, not again), notes.
-tongue_lcm::lcmt_tongue_state state_message(const scene_run::SceneRun& run,
-                                            const std::vector<int>& nodes,
-                                            const scene_run::StepResult& last,
-                                            const StateNotes& notes);
+// The state of run's last accepted step, written into msg: the positions of nodes (node
+// indices), last's solver figures and muscle frame (lengths and velocities as step() computed
+// them, not again), notes. Every field is set; msg's vectors keep their storage, so that a
+// message kept from step to step is filled without allocating.
+void fill_state_message(tongue_lcm::lcmt_tongue_state& msg, const scene_run::SceneRun& run,
+                        const std::vector<int>& nodes, const scene_run::StepResult& last,
+                        const StateNotes& notes);
 
 }  // namespace tongue::server

@@ -1,7 +1,8 @@
 // kill -9 of a running sim_server (fast mode, free-running): the run file must still open, with
 // every frame up to the last flush. RunFileWriter flushes on the first append at least
-// flush_interval (1 s) after the previous flush, so a SIGKILL loses at most the frames of about
-// the last second of wall time (plus one step).
+// flush_interval (1 s) after the previous flush, and RunFileQueue's writer takes queued frames
+// at least every 50 ms, so a SIGKILL loses at most the frames of about the last second of wall
+// time (plus that poll and one step).
 #include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>

@@ -1,0 +1,61 @@
+#pragma once
+// The material's stability check (fem::EllipticityMonitor::first_loss) run on a thread of its
+// own, so that a step does not wait for it (on the built-in tongue it costs about 0.5 ms a step,
+// the searches of the elements strained beyond the monitor's screen).
+//
+// check(u, step, time) hands over a copy of the state and returns at once; that state's finding
+// comes back from the next check() (or collect()), which first waits for the check to end. Each
+// accepted state is checked once, in order, whatever the threads' timing, so the findings are
+// those of first_loss called on the main thread, each delivered one call later: a loss in the
+// state of step k is reported with step k + 1's result (or by collect() at the end of a run).
+#include <condition_variable>
+#include <cstdint>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "fem/assembly/ellipticity_monitor.hpp"
+
+namespace tongue::scene_run {
+
+// The first loss of strong ellipticity a run found, in an accepted state.
+struct EllipticityFinding {
+  std::int64_t step = 0;  // the state's step number
+  double time = 0.0;      // s, the state's time
+  fem::EllipticityLoss loss;
+  std::string warning;  // fem::describe()'s line for the user
+};
+
+class EllipticityWatch {
+ public:
+  explicit EllipticityWatch(const fem::SolidModel& solid);
+  ~EllipticityWatch();  // waits for the check under way
+  EllipticityWatch(const EllipticityWatch&) = delete;
+  EllipticityWatch& operator=(const EllipticityWatch&) = delete;
+
+  // Waits for the check under way, then starts checking u (full displacement [m], the state of
+  // `step` at `time` [s]); returns the finding of the check it waited for, if any (at most one
+  // finding per watch: first_loss reports once).
+  std::optional<EllipticityFinding> check(const fem::Vector& u, std::int64_t step, double time);
+  // Waits for the check under way and returns its finding, if any.
+  std::optional<EllipticityFinding> collect();
+
+ private:
+  void run();  // the worker
+  std::optional<EllipticityFinding> wait_and_take(std::unique_lock<std::mutex>& lock);
+
+  fem::EllipticityMonitor monitor_;  // the worker's while busy_
+  const fem::Material& material_;
+  std::mutex mutex_;
+  std::condition_variable changed_;  // a check handed over or ended, or stopping
+  fem::Vector u_;                    // the state being checked: the worker's while busy_
+  std::int64_t step_ = 0;
+  double time_ = 0.0;
+  bool busy_ = false;
+  bool stopping_ = false;
+  std::optional<EllipticityFinding> found_;  // not yet collected
+  std::thread worker_;
+};
+
+}  // namespace tongue::scene_run
