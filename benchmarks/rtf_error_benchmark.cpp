@@ -60,8 +60,10 @@ scene::Scene reference_scene(scene::Scene s) {
   s.solver.max_tangent_reuse = 50;  // at 0.1 ms c0 M dominates: a reused factor converges fast
   s.solver.reform_ratio = 0.5;
   s.solver.quasi_newton_updates = 0;
+  s.solver.displacement_tolerance = 0.0;  // the residual and increment tests decide
   s.solver_keys.insert({"residual_rtol", "residual_atol", "increment_rtol", "increment_atol",
-                        "max_tangent_reuse", "reform_ratio", "quasi_newton_updates"});
+                        "max_tangent_reuse", "reform_ratio", "quasi_newton_updates",
+                        "displacement_tolerance"});
   s.threads = 1;
   return s;
 }

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Reference runs of the built-in tongue (DESIGN sec. 5: dt 0.1 ms, Newton tolerances far below
+# Reference runs of the built-in tongue (dt 0.1 ms, Newton tolerances far below
 # any working setting) and the nodal error of the default settings (dt 4 ms) against them:
 #   1. SG 3 N for 120 ms, then 200 ms of relaxation (sim_batch, scenes/tongue_sg_3n_relax*.yaml);
 #   2. /ai/ in closed loop with ep_controller (run_experiment, experiments/ai.yaml and

@@ -232,7 +232,7 @@ TEST_F(SimBatch, UnconvergedStepIsReportedAndWrittenFramesKept) {
   const fs::path scene = write_scene(std::string(kHead) + R"(
 analysis: {type: dynamic, duration: 0.02, dt: 0.002, max_cuts: 0}
 solver: {max_iterations: 1, residual_rtol: 0, residual_atol: 0, increment_rtol: 0,
-         increment_atol: 0}
+         increment_atol: 0, displacement_tolerance: 0}
 )");
   const fs::path h5 = dir_ / "failed.h5";
   const RunResult r = run(quoted(scene) + " --output " + quoted(h5));

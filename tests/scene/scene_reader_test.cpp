@@ -97,7 +97,7 @@ analysis:
   max_cuts: 3
 solver: {residual_rtol: 1e-7, residual_atol: 1e-10, increment_rtol: 1e-5, increment_atol: 1e-11,
          max_iterations: 12, line_search: false, max_tangent_reuse: 5, reform_ratio: 0.25,
-         quasi_newton_updates: 4, threads: 2}
+         quasi_newton_updates: 4, displacement_tolerance: 2e-6, threads: 2}
 output: {file: logs/x.h5, every: 5}
 )",
                               "", "test.yaml");
@@ -139,8 +139,9 @@ output: {file: logs/x.h5, every: 5}
   EXPECT_EQ(s.solver.max_tangent_reuse, 5);
   EXPECT_DOUBLE_EQ(s.solver.reform_ratio, 0.25);
   EXPECT_EQ(s.solver.quasi_newton_updates, 4);
+  EXPECT_DOUBLE_EQ(s.solver.displacement_tolerance, 2e-6);
   EXPECT_EQ(s.threads, 2);
-  EXPECT_EQ(s.solver_keys.size(), 10u);  // every key given
+  EXPECT_EQ(s.solver_keys.size(), 11u);  // every key given
   EXPECT_EQ(s.output.file, "logs/x.h5");
   EXPECT_EQ(s.output.every, 5);
 }

@@ -1,4 +1,4 @@
-// Long runs under random activations (DESIGN sec. 5), through the real sim_server in lock-step:
+// Long runs under random activations, through the real sim_server in lock-step:
 // every muscle jumps to a random level in [0, 1] at random times (on average every 100 ms).
 // Pass: every step converges (the server never accepts one that does not), every published
 // position is finite, and no element is inverted (checked here from the published positions

@@ -1,4 +1,4 @@
-// Stability under the worst a user can do (DESIGN sec. 5), each run by the real sim_batch on the
+// Stability under the worst a user can do, each run by the real sim_batch on the
 // built-in tongue: all muscles at full force, bang-bang switching of antagonists every 10 ms,
 // time steps up to 20 ms, Poisson's ratio up to 0.499. Pass: the run completes, no frame has a
 // non-finite position or an inverted element (checked here from the run file alone), and step
