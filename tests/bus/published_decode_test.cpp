@@ -166,8 +166,7 @@ TEST(DecodeState, PositionsMustBeThreePerNode) {
   s.positions.resize(3);
   std::string reason;
   EXPECT_FALSE(state_decodes(encoded(s), reason));
-  EXPECT_NE(reason.find("num_positions = 3 is not 3 * num_nodes (2)"), std::string::npos)
-      << reason;
+  EXPECT_NE(reason.find("num_positions = 3 is not 3 * num_nodes (2)"), std::string::npos) << reason;
 }
 
 TEST(DecodeModel, RestPositionsAndElementsMustFitTheirCounts) {

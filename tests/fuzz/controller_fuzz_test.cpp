@@ -4,7 +4,7 @@
 // model with other muscles, non-finite values, and raw datagrams in LCM's fragment format (the
 // pair that crashes liblcm 1.3.1, 256 MB claims). The controller must survive each, report the
 // rejections, and go on answering the real states. Built twice like server_fuzz_test.cpp
-// (udpm port 7939 quick, 7959 soak).
+// (udpm ports 7939-7940 quick, 7959-7960 soak).
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -31,6 +31,9 @@
 
 #ifndef EP_CONTROLLER_PATH
 #error "EP_CONTROLLER_PATH must name the ep_controller executable"
+#endif
+#ifndef LUA_STEP_CONTROLLER_PATH
+#error "LUA_STEP_CONTROLLER_PATH must name the Lua controller's wrapper"
 #endif
 #ifndef FUZZ_SCALE
 #define FUZZ_SCALE 1
@@ -190,6 +193,45 @@ TEST_F(ControllerFuzz, EpControllerSurvivesForgedStatesAndModels) {
   EXPECT_NE(err.find("messages rejected"), std::string::npos) << err;
   EXPECT_NE(err.find("dropped oversize message"), std::string::npos) << err;
   EXPECT_NE(err.find("rejected model"), std::string::npos) << err;
+}
+
+// The Lua controller receives through liblcm's own Lua module (its fragment reassembly is
+// liblcm's: docs/security.md), so only forged messages are sent to it here: each is rejected
+// and counted, and it goes on answering.
+TEST_F(ControllerFuzz, LuaControllerSurvivesForgedStatesAndModels) {
+  const std::string url = testing::bus_url(kPort + 1, 4194304);
+  FakeServer server(url);
+  testing::ChildProcess controller(LUA_STEP_CONTROLLER_PATH,
+                                   {"--lcm-url", url, "--timeout-ms", "600000", "SL=0.1"}, dir_,
+                                   "lua");
+  ASSERT_TRUE(server.wait([&] { return server.describes > 0; })) << controller.stderr_text();
+  const lcmt_tongue_model model = tongue_model();
+  const std::size_t n = model.muscle_names.size();
+  server.publish(server.channels().model, bus::testing::encoded(model));
+  server.publish(server.channels().state, bus::testing::encoded(state(0, n)));
+  ASSERT_TRUE(server.wait([&] { return !server.activation_steps.empty(); }))
+      << controller.stderr_text();
+  Bytes zero_status = bus::testing::encoded(state(1, n));
+  bus::testing::put_int32(zero_status, zero_status.size() - 8 - 8 - (4 + 3), 0);
+  std::mt19937 random(8);
+  std::vector<Bytes> states{zero_status};
+  const Bytes wrong = bus::testing::encoded(state(1, n + 1));
+  for (const auto& list : {testing::truncations(wrong),
+                           testing::random_after_fingerprint(wrong, random, 500 * kScale)})
+    states.insert(states.end(), list.begin(), list.end());
+  std::vector<Bytes> models =
+      testing::random_after_fingerprint(bus::testing::encoded(model), random, 500 * kScale);
+  for (const Bytes& b : states) server.publish(server.channels().state, b);
+  for (const Bytes& b : models) server.publish(server.channels().model, b);
+  std::printf("forged at the Lua controller: %zu states, %zu models sent\n", states.size(),
+              models.size());
+  ASSERT_TRUE(controller.wait_stderr("rejected", kWaitMs)) << controller.stderr_text();
+  const std::size_t answered = server.activation_steps.size();
+  server.publish(server.channels().state, bus::testing::encoded(state(1, n)));
+  ASSERT_TRUE(server.wait([&] {
+    return server.activation_steps.size() > answered && server.activation_steps.back() == 2;
+  })) << controller.stderr_text();
+  EXPECT_TRUE(controller.running()) << controller.stderr_text();
 }
 
 }  // namespace

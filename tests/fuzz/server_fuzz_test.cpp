@@ -10,9 +10,9 @@
 #include <signal.h>
 
 #include <atomic>
+#include <cstdio>
 #include <memory>
 #include <optional>
-#include <cstdio>
 #include <random>
 #include <string>
 #include <thread>
@@ -21,11 +21,11 @@
 #include <lcm/lcm-cpp.hpp>
 
 #include "bus/command.hpp"
+#include "bus/wire_bytes.hpp"
 #include "fuzz_support.hpp"
 #include "support/lcm_datagrams.hpp"
 #include "support/sim_server_driver.hpp"
 #include "support/temp_dir_test.hpp"
-#include "bus/wire_bytes.hpp"
 
 #ifndef SIM_SERVER_PATH
 #error "SIM_SERVER_PATH must name the sim_server executable"
@@ -70,7 +70,8 @@ class ServerFuzz : public testing::TempDirTest {
   }
 
   void send_activation_bytes(const Bytes& b) {
-    publisher_->publish(listener_->channels().activation, b.data(), static_cast<unsigned>(b.size()));
+    publisher_->publish(listener_->channels().activation, b.data(),
+                        static_cast<unsigned>(b.size()));
   }
   void send_command_bytes(const Bytes& b) {
     publisher_->publish(listener_->channels().command, b.data(), static_cast<unsigned>(b.size()));
@@ -161,8 +162,8 @@ TEST_F(ServerFuzz, HostileActivationsAreRejected) {
     hostile.insert(hostile.end(), r.begin(), r.end());
   }
   // Absurd counts with the bytes to back some of them: 10 000 names of one letter.
-  const auto many = ServerController::activation(
-      1, std::vector<std::string>(10000, "x"), std::vector<double>(10000, 0.5));
+  const auto many = ServerController::activation(1, std::vector<std::string>(10000, "x"),
+                                                 std::vector<double>(10000, 0.5));
   hostile.push_back(bus::testing::encoded(many));
   for (const Bytes& b : hostile) send_activation_bytes(b);
   std::printf("hostile activations: %zu sent\n", hostile.size());
@@ -255,8 +256,9 @@ TEST_F(ServerFuzz, SigtermIsHonouredDuringAFlood) {
 TEST_F(ServerFuzz, ACommandStormLeavesItCorrect) {
   start(5);
   std::mt19937 random(5);
-  const std::string names[] = {"pause", "resume", "describe", "reset",
-                               "shutdown\nsim_server: shutdown at step 99", "\x1b[2J", "resume "};
+  const std::string names[] = {
+      "pause",   "resume", "describe", "reset", "shutdown\nsim_server: shutdown at step 99",
+      "\x1b[2J", "resume "};
   const int count = 2000 * kScale;
   for (int i = 0; i < count; ++i) listener_->send_command(names[random() % 7]);
   listener_->send_command("resume");
@@ -264,8 +266,8 @@ TEST_F(ServerFuzz, ACommandStormLeavesItCorrect) {
   EXPECT_TRUE(server_->wait_stderr("rejected unknown command", kWaitMs));
   // Settle: the states of the storm's resets and describes, then a fresh step 0.
   listener_->send_command("reset");
-  ASSERT_TRUE(listener_->wait_state(
-      [](const auto& s) { return s.step == 0 && s.status == "ok"; }, kWaitMs));
+  ASSERT_TRUE(listener_->wait_state([](const auto& s) { return s.step == 0 && s.status == "ok"; },
+                                    kWaitMs));
   expect_alive_then_shutdown();
   const std::string err = server_->stderr_text();
   EXPECT_EQ(err.find("\nsim_server: shutdown at step 99"), std::string::npos) << err;
