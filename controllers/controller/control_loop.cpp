@@ -9,7 +9,6 @@
 
 #include "common/interrupt.hpp"
 #include "common/number_text.hpp"
-#include "controller/muscle_selection.hpp"
 
 namespace tongue::controller {
 namespace {

@@ -4,7 +4,7 @@
 // floods and a command storm. After each scenario the server must still be alive and correct:
 // it answers "describe" with its model, steps on a valid activation, and exits 0 on "shutdown".
 // Built twice: quick for CI (label integration, FUZZ_SCALE 1, udpm ports 7932-7938) and a soak
-// (label slow, FUZZ_SCALE 10, ports 7952-7958). Each scenario prints the counts it sent.
+// (label slow, FUZZ_SCALE 50, ports 7952-7958). Each scenario prints the counts it sent.
 #include <gtest/gtest.h>
 
 #include <signal.h>
