@@ -121,6 +121,23 @@ class FakeServer {
   bus::Channels channels_;
 };
 
+// Whether the controller, stepped to 0 before, answers a later state: the states of steps 1, 2,
+// ... are sent 200 ms apart until an activation for step 2 or later comes back. While the
+// forgeries still fill the sockets' buffers the kernel drops datagrams that do not fit, the
+// controller's answer (sent once per step) or the state itself; a new step gets a new answer.
+bool answers_a_new_state(FakeServer& server, std::size_t muscles) {
+  std::int64_t step = 0;
+  auto last = std::chrono::steady_clock::now() - std::chrono::seconds(1);
+  return server.wait([&] {
+    if (!server.activation_steps.empty() && server.activation_steps.back() >= 2) return true;
+    if (std::chrono::steady_clock::now() - last > std::chrono::milliseconds(200)) {
+      server.publish(server.channels().state, bus::testing::encoded(state(++step, muscles)));
+      last = std::chrono::steady_clock::now();
+    }
+    return false;
+  });
+}
+
 class ControllerFuzz : public testing::TempDirTest {};
 
 TEST_F(ControllerFuzz, EpControllerSurvivesForgedStatesAndModels) {
@@ -181,9 +198,7 @@ TEST_F(ControllerFuzz, EpControllerSurvivesForgedStatesAndModels) {
   ASSERT_TRUE(controller.wait_stderr("rejected undecodable state", kWaitMs))
       << controller.stderr_text();
   const auto peak_kb = testing::peak_rss_kb(controller.pid());
-  server.publish(server.channels().state, bus::testing::encoded(state(1, n)));
-  ASSERT_TRUE(server.wait([&] { return server.activation_steps.back() == 2; }))
-      << controller.stderr_text();
+  ASSERT_TRUE(answers_a_new_state(server, n)) << controller.stderr_text();
   EXPECT_TRUE(controller.running());
   std::printf("ep_controller peak RSS %ld kB\n", peak_kb);
   EXPECT_LT(peak_kb, 100 * 1024);  // kB; liblcm's reassembly would hold 256 MB per claim
@@ -227,10 +242,8 @@ TEST_F(ControllerFuzz, LuaControllerSurvivesForgedStatesAndModels) {
               models.size());
   ASSERT_TRUE(controller.wait_stderr("rejected", kWaitMs)) << controller.stderr_text();
   const std::size_t answered = server.activation_steps.size();
-  server.publish(server.channels().state, bus::testing::encoded(state(1, n)));
-  ASSERT_TRUE(server.wait([&] {
-    return server.activation_steps.size() > answered && server.activation_steps.back() == 2;
-  })) << controller.stderr_text();
+  ASSERT_TRUE(answers_a_new_state(server, n)) << controller.stderr_text();
+  EXPECT_GT(server.activation_steps.size(), answered);
   EXPECT_TRUE(controller.running()) << controller.stderr_text();
 }
 
