@@ -1,9 +1,12 @@
 #include "controller/command_line.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "bus/channels.hpp"
+#include "bus/lcm_url.hpp"
 #include "common/number_text.hpp"
+#include "common/untrusted_text.hpp"
 
 namespace tongue::controller {
 namespace {
@@ -22,11 +25,16 @@ bool contains(const std::vector<std::string>& names, const std::string& name) {
 
 void set_common(CommonOptions& o, const std::string& name, const std::string& value) {
   if (name == "--lcm-url") {
-    if (value.empty()) throw UsageError("--lcm-url must not be empty");
+    try {
+      bus::parse_lcm_url(value);
+    } catch (const std::invalid_argument& e) {
+      throw UsageError(std::string("--lcm-url: ") + e.what());
+    }
     o.lcm_url = value;
   } else if (name == "--prefix") {
     if (!bus::is_valid_channel_prefix(value))
-      throw UsageError("--prefix '" + value + "' must contain only A-Z, 0-9 and _");
+      throw UsageError("--prefix " + common::quoted_untrusted(value) + " " +
+                       std::string(bus::kChannelPrefixRule));
     o.prefix = value;
   } else if (name == "--mode") {
     if (value == "lockstep") {
@@ -34,7 +42,8 @@ void set_common(CommonOptions& o, const std::string& name, const std::string& va
     } else if (value == "realtime") {
       o.mode = LoopMode::realtime;
     } else {
-      throw UsageError("--mode must be lockstep or realtime, not '" + value + "'");
+      throw UsageError("--mode must be lockstep or realtime, not " +
+                       common::quoted_untrusted(value));
     }
   } else if (name == "--max-steps") {
     const std::optional<long long> steps = common::parse_integer(value);

@@ -9,7 +9,6 @@
 
 #include "common/interrupt.hpp"
 #include "common/number_text.hpp"
-#include "controller/muscle_selection.hpp"
 
 namespace tongue::controller {
 namespace {
@@ -40,7 +39,7 @@ class Loop {
         options_(options),
         controller_(controller),
         outcome_(outcome),
-        bus_(options.lcm_url, bus::Channels(options.prefix)) {}
+        bus_(options.lcm_url, bus::Channels(options.prefix), program_) {}
 
   void run() {
     const double start = now_seconds();
@@ -62,6 +61,11 @@ class Loop {
     return true;
   }
 
+  void poll(int timeout_ms) {
+    bus_.poll(timeout_ms);
+    outcome_.counts.messages_rejected = bus_.rejected();
+  }
+
   void command(bus::Command c) {
     bus_.send_command(c);
     ++outcome_.counts.commands_sent;
@@ -75,6 +79,7 @@ class Loop {
       if (!bus_.models().empty()) {
         model_ = std::move(bus_.models().front());
         bus_.models().pop_front();
+        bus_.set_model(model_);
         return true;
       }
       const double now = now_seconds();
@@ -88,22 +93,14 @@ class Loop {
         interval = std::min(2.0 * interval, kLongestDescribe);
         next_describe = now + interval;
       }
-      bus_.poll(wait_ms(std::min(next_describe, start + options_.timeout_s), now));
+      poll(wait_ms(std::min(next_describe, start + options_.timeout_s), now));
     }
   }
 
-  // Later models (answers to describe, another controller's describe) must describe the same
-  // muscles: the controller resolved its names against the first.
-  void check_models() {
-    while (!bus_.models().empty()) {
-      const Model& m = bus_.models().front();
-      if (m.muscle_names != model_.muscle_names)
-        throw std::runtime_error("the server's muscles changed (" +
-                                 joined_names(model_.muscle_names) + " -> " +
-                                 joined_names(m.muscle_names) + "): restart the controller");
-      bus_.models().pop_front();
-    }
-  }
+  // Later models (answers to describe, another controller's describe) are the first one again:
+  // the bus rejects those with other muscles (the controller resolved its names against the
+  // first).
+  void check_models() { bus_.models().clear(); }
 
   void run_states() {
     state_deadline_ = now_seconds() + options_.timeout_s;
@@ -127,7 +124,7 @@ class Loop {
                                     " after step " + std::to_string(c.last_step));
         return;
       }
-      bus_.poll(wait_ms(state_deadline_, now));
+      poll(wait_ms(state_deadline_, now));
     }
   }
 
@@ -216,6 +213,8 @@ std::string summary_line(const std::string& program, const LoopOutcome& outcome,
        (options.mode == LoopMode::lockstep ? "lockstep" : "realtime") + "), " +
        std::to_string(c.commands_sent) + " commands sent";
   if (c.resets > 0) s += ", " + std::to_string(c.resets) + " server resets";
+  if (c.messages_rejected > 0)
+    s += ", " + std::to_string(c.messages_rejected) + " messages rejected";
   if (!controller_summary.empty()) s += "; " + controller_summary;
   return s;
 }

@@ -40,6 +40,8 @@ struct LoopCounts {
   std::int64_t first_step = -1;    // of the states received; -1: none
   std::int64_t last_step = -1;
   int resets = 0;  // times the server's step went down
+  // States and models received and rejected (undecodable, or not fitting the model).
+  std::int64_t messages_rejected = 0;
 };
 
 struct LoopOutcome {
@@ -56,7 +58,8 @@ LoopOutcome run_control_loop(const std::string& program, const CommonOptions& op
                              Controller& controller);
 
 // The summary line: "<program>: <reason>; <n> states received (steps a-b), <m> activations sent
-// (lockstep), <c> commands sent[; <controller summary>]".
+// (lockstep), <c> commands sent[, <r> server resets][, <j> messages rejected][; <controller
+// summary>]".
 std::string summary_line(const std::string& program, const LoopOutcome& outcome,
                          const CommonOptions& options, const std::string& controller_summary);
 

@@ -1,18 +1,27 @@
 #pragma once
-// A controller's connection to one tongue server on an LCM bus: subscribed to the server's state
+// A controller's connection to one tongue server on an LCM bus: receiving on the server's state
 // and model channels from construction (so nothing published after it is missed), queues what
-// arrives, and publishes activations and commands. The subscriptions are released before the
-// LCM instance goes.
+// arrives, and publishes activations and commands. Every message received is checked before it
+// is queued, since any process on the bus can send on those channels: its size against the
+// channel's limit (bus/receive_limits.hpp) before it is copied, its bytes by the checked
+// decoders (bus/published_decode.hpp), and, once the model is known, a state against it (its
+// muscles, its node indices, finite values) and a later model against the first (the same
+// muscles). A rejected message is counted and reported on stderr (at most one line per kind per
+// second), never thrown.
 #include <cstdint>
 #include <deque>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "bus/bus_receiver.hpp"
 #include "bus/channels.hpp"
 #include "bus/command.hpp"
+#include "bus/lcm_url.hpp"
 #include "bus/messages.hpp"
+#include "common/rate_limited_reporter.hpp"
 
 namespace tongue::controller {
 
@@ -27,18 +36,27 @@ struct MuscleLevels {
 
 class ControllerBus {
  public:
-  // Throws std::runtime_error naming the URL when LCM cannot be opened or subscribed to.
-  ControllerBus(const std::string& url, const bus::Channels& channels);
-  ~ControllerBus();
+  // program names the controller in its reports. Throws std::invalid_argument for a URL
+  // bus::parse_lcm_url rejects, std::runtime_error naming the URL when LCM cannot be opened or
+  // received on.
+  ControllerBus(const std::string& url, const bus::Channels& channels,
+                const std::string& program = "controller");
   ControllerBus(const ControllerBus&) = delete;
   ControllerBus& operator=(const ControllerBus&) = delete;
 
-  // Waits at most timeout_ms for messages and queues all that have arrived. Returns false when
-  // the wait was cut short by a signal (the caller looks at its flag). Throws when LCM fails.
+  // Waits at most timeout_ms for messages and queues those that arrived (a bounded batch: the
+  // rest come with the next calls). Returns false when the wait was cut short by a signal (the
+  // caller looks at its flag). Throws when LCM fails.
   bool poll(int timeout_ms);
+
+  // The model the controller works with: states are checked against it from now on (those
+  // already queued too), and later models must have its muscles.
+  void set_model(const Model& model);
 
   std::deque<State>& states() { return states_; }
   std::deque<Model>& models() { return models_; }
+  // Messages received and rejected so far (undecodable, or not fitting the model).
+  std::int64_t rejected() const { return rejected_; }
 
   // Throws std::runtime_error naming the channel when LCM cannot publish.
   void send_activation(std::int64_t step, const MuscleLevels& levels);
@@ -48,15 +66,22 @@ class ControllerBus {
   const bus::Channels& channels() const { return channels_; }
 
  private:
-  void on_state(const lcm::ReceiveBuffer*, const std::string&, const State* msg);
-  void on_model(const lcm::ReceiveBuffer*, const std::string&, const Model* msg);
+  void take(const bus::ReceivedMessage& message);
+  // Why state does not fit the model, or nullopt.
+  std::optional<std::string> misfit(const State& state) const;
+  void reject(const std::string& kind, const std::string& reason);
 
   std::string url_;
   bus::Channels channels_;
+  std::string program_;
+  bus::LcmUrl parsed_url_;
   lcm::LCM lcm_;
-  std::vector<lcm::Subscription*> subscriptions_;  // owned by lcm_, released in the destructor
+  bus::BusReceiver receiver_;
+  common::RateLimitedReporter reports_;
+  std::optional<Model> model_;
   std::deque<State> states_;
   std::deque<Model> models_;
+  std::int64_t rejected_ = 0;
 };
 
 // Wall-clock microseconds, the utime of the messages sent.

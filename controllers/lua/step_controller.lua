@@ -50,6 +50,20 @@ local EXIT_TIMEOUT = 4
 local SLICE_MS = 50             -- longest single wait on the bus
 local DESCRIBE_AFTER_MS = 250   -- ask for the model when it has not come by then
 
+-- The largest model and state taken [bytes], as sim_server/bus/receive_limits.hpp states them
+-- (kModelLimit, kStateLimitBeforeModel).
+local MODEL_LIMIT = 64 * 1024 * 1024
+local STATE_LIMIT = 32 * 1024 * 1024
+
+-- Received text as a report prints it: bytes outside printable ASCII as \xNN, cut at 64.
+local function printable(text)
+  local shown = text:sub(1, 64):gsub("[^\32-\126]", function(c)
+    return string.format("\\x%02x", c:byte())
+  end)
+  if #text > 64 then shown = shown .. "...(" .. #text .. " bytes)" end
+  return shown
+end
+
 local function fail(status, text)
   io.stderr:write(PROG .. ": " .. text .. "\n")
   os.exit(status)
@@ -176,11 +190,27 @@ local function main(args)
   if not ok then fail(EXIT_ERROR, "cannot open the LCM bus at '" .. options.url .. "': " .. bus) end
   local model
   local states = {}  -- received, not yet answered, in order
+  -- Any process on the bus can send on these channels: a message too large, or one lcm-gen's
+  -- decoder fails on, is counted and reported (at most once a second), never fatal.
+  local rejected, reported_at = 0, nil
+  local function take(decoder, data, limit, what)
+    local ok, msg = false, "larger than the " .. limit .. "-byte limit"
+    if #data <= limit then ok, msg = pcall(decoder, data) end
+    if ok and msg ~= nil then return msg end
+    rejected = rejected + 1
+    if reported_at ~= os.time() then
+      reported_at = os.time()
+      io.stderr:write(string.format("%s: rejected %s (%d so far): %s\n", PROG, what, rejected,
+                                    printable(tostring(msg))))
+    end
+    return nil
+  end
   bus:subscribe(channel.model, function(_, data)
-    model = tongue_lcm.lcmt_tongue_model.decode(data)
+    model = take(tongue_lcm.lcmt_tongue_model.decode, data, MODEL_LIMIT, "model") or model
   end)
   bus:subscribe(channel.state, function(_, data)
-    table.insert(states, tongue_lcm.lcmt_tongue_state.decode(data))
+    local state = take(tongue_lcm.lcmt_tongue_state.decode, data, STATE_LIMIT, "state")
+    if state then table.insert(states, state) end
   end)
   io.stderr:write(string.format("%s: listening on %s, channels %s*\n", PROG, options.url,
                                 options.prefix))
@@ -233,7 +263,7 @@ local function main(args)
     last_step, last_time = state.step, state.time
     if not state.converged then
       fail(EXIT_NOT_CONVERGED, string.format("the server reports step %d did not converge: %s",
-                                             state.step + 1, state.status))
+                                             state.step + 1, printable(state.status)))
     end
     if options.max_steps and state.step >= options.max_steps then break end
     -- "paused" states repeat a state already answered; "ok" ones are new (or a reset's step 0).
@@ -251,8 +281,10 @@ local function main(args)
       answered = answered + 1
     end
   end
-  io.stderr:write(string.format("%s: answered %d states; reached step %d (t = %.6g s)\n", PROG,
-                                answered, last_step, last_time))
+  io.stderr:write(string.format("%s: answered %d states; reached step %d (t = %.6g s)%s\n", PROG,
+                                answered, last_step, last_time,
+                                rejected > 0 and string.format("; %d messages rejected", rejected)
+                                  or ""))
   return 0
 end
 

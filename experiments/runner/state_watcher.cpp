@@ -1,12 +1,30 @@
 #include "state_watcher.hpp"
 
-#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "bus/published_decode.hpp"
+#include "bus/receive_limits.hpp"
 
 namespace tongue::runner {
 
-StateWatcher::StateWatcher(const std::string& url, const std::string& channel) : lcm_(url) {
-  if (!lcm_.good()) throw std::runtime_error("cannot open the LCM bus " + url);
-  lcm_.subscribe(channel, &StateWatcher::on_state, this);
+StateWatcher::StateWatcher(const std::string& url, const std::string& channel)
+    : url_(bus::parse_lcm_url(url)),
+      lcm_(url),
+      receiver_(lcm_, url_, {{channel, bus::kStateLimitBeforeModel}}, "run_experiment") {}
+
+void StateWatcher::poll(int timeout_ms) {
+  std::vector<bus::ReceivedMessage> received;
+  receiver_.receive(timeout_ms, received);
+  for (const bus::ReceivedMessage& m : received) {
+    tongue_lcm::lcmt_tongue_state s;
+    std::string reason;
+    if (bus::decode_state(m.bytes.data(), static_cast<int>(m.bytes.size()), s, reason)) {
+      on_state(s);
+    } else {
+      reports_.report("state", "run_experiment: rejected undecodable state: " + reason);
+    }
+  }
 }
 
 double StateWatcher::steps_per_second() const {
@@ -16,18 +34,17 @@ double StateWatcher::steps_per_second() const {
              : 0.0;
 }
 
-void StateWatcher::on_state(const lcm::ReceiveBuffer*, const std::string&,
-                            const tongue_lcm::lcmt_tongue_state* s) {
+void StateWatcher::on_state(const tongue_lcm::lcmt_tongue_state& s) {
   // The pace counts from the first step the controllers drove (state 0 comes before they
   // start).
-  if (s->step >= 1 && !driving_) {
+  if (s.step >= 1 && !driving_) {
     driving_ = true;
-    first_step_ = s->step;
+    first_step_ = s.step;
     first_at_ = Clock::now();
   }
-  last_step_ = s->step;
+  last_step_ = s.step;
   last_at_ = Clock::now();
-  if (!s->converged) unconverged_ = true;
+  if (!s.converged) unconverged_ = true;
 }
 
 }  // namespace tongue::runner

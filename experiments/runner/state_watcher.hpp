@@ -8,19 +8,23 @@
 
 #include <lcm/lcm-cpp.hpp>
 
+#include "bus/bus_receiver.hpp"
+#include "bus/lcm_url.hpp"
 #include "bus/messages.hpp"
+#include "common/rate_limited_reporter.hpp"
 
 namespace tongue::runner {
 
 class StateWatcher {
  public:
-  // Subscribes to channel on the bus at url. Throws std::runtime_error when the bus cannot be
-  // opened.
+  // Receives on channel on the bus at url, every message through the bus's size limit and
+  // checked decoder (a forged state is reported, not fatal). Throws std::runtime_error when the
+  // bus cannot be opened.
   StateWatcher(const std::string& url, const std::string& channel);
   StateWatcher(const StateWatcher&) = delete;
   StateWatcher& operator=(const StateWatcher&) = delete;
 
-  void poll(int timeout_ms) { lcm_.handleTimeout(timeout_ms); }
+  void poll(int timeout_ms);
   std::optional<std::int64_t> last_step() const { return last_step_; }
   // Steps per wall second between the first and the last state received (0: too few).
   double steps_per_second() const;
@@ -29,10 +33,12 @@ class StateWatcher {
  private:
   using Clock = std::chrono::steady_clock;
 
-  void on_state(const lcm::ReceiveBuffer*, const std::string&,
-                const tongue_lcm::lcmt_tongue_state* s);
+  void on_state(const tongue_lcm::lcmt_tongue_state& s);
 
+  bus::LcmUrl url_;
   lcm::LCM lcm_;
+  bus::BusReceiver receiver_;
+  common::RateLimitedReporter reports_{1.0};
   std::optional<std::int64_t> last_step_;
   bool driving_ = false;
   std::int64_t first_step_ = 0;

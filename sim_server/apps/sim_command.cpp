@@ -15,8 +15,10 @@
 
 #include "bus/channels.hpp"
 #include "bus/command.hpp"
+#include "bus/lcm_url.hpp"
 #include "bus/messages.hpp"
 #include "common/exit_code.hpp"
+#include "common/untrusted_text.hpp"
 
 namespace {
 
@@ -51,7 +53,8 @@ int main(int argc, char** argv) {
       }
       (arg == "--lcm-url" ? url : prefix) = argv[++i];
     } else if (command || !tongue::bus::parse_command(arg)) {
-      std::fprintf(stderr, "sim_command: unexpected argument '%s'\n", arg.c_str());
+      std::fprintf(stderr, "sim_command: unexpected argument %s\n",
+                   tongue::common::quoted_untrusted(arg).c_str());
       print_usage(stderr);
       return kExitError;
     } else {
@@ -63,6 +66,7 @@ int main(int argc, char** argv) {
     return kExitError;
   }
   try {
+    tongue::bus::parse_lcm_url(url);
     const tongue::bus::Channels channels(prefix);
     lcm::LCM lcm(url);
     if (!lcm.good()) {

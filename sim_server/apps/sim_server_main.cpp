@@ -19,9 +19,11 @@
 #include <exception>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "bus/channels.hpp"
 #include "bus/lcm_server_bus.hpp"
+#include "bus/receive_limits.hpp"
 #include "common/exit_code.hpp"
 #include "common/interrupt.hpp"
 #include "scene/scene_builder.hpp"
@@ -58,7 +60,10 @@ int run(int argc, char** argv) {
     scene::BuiltScene built = scene::build_scene(scene);
     options->server.output = options->output ? *options->output : scene.output.file;
     const common::InterruptHandlers interrupt;
-    bus::LcmServerBus bus(options->url, channels);
+    std::vector<std::string> muscles;
+    if (built.muscles)
+      for (const auto& m : built.muscles->muscles()) muscles.push_back(m.name);
+    bus::LcmServerBus bus(options->url, channels, bus::activation_limit(muscles));
     server::ServerLoop loop(scene, std::move(built), bus, options->server,
                             [&interrupt] { return interrupt.raised(); });
     const std::string controllers =
@@ -69,7 +74,14 @@ int run(int argc, char** argv) {
                  options->scene_path.c_str(), mode_name(options->server.mode), controllers.c_str(),
                  options->url.c_str(), options->prefix.c_str(),
                  options->server.output.empty() ? "none" : options->server.output.c_str());
-    return static_cast<int>(loop.run());
+    const int status = static_cast<int>(loop.run());
+    if (const bus::DropCounts d = bus.drops(); d.total() > 0)
+      std::fprintf(stderr,
+                   "sim_server: bus: dropped %lld oversize messages, %lld bad datagrams, %lld bad "
+                   "fragments, %lld incomplete messages\n",
+                   static_cast<long long>(d.oversize), static_cast<long long>(d.not_lcm),
+                   static_cast<long long>(d.bad_fragment), static_cast<long long>(d.incomplete));
+    return status;
   } catch (const scene::SceneError& e) {
     std::fprintf(stderr, "sim_server: scene error: %s\n", e.what());
   } catch (const std::exception& e) {

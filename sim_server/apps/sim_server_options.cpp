@@ -3,10 +3,13 @@
 #include <cstddef>
 #include <cstdlib>
 #include <limits>
+#include <stdexcept>
 #include <string_view>
 
+#include "bus/lcm_url.hpp"
 #include "common/exit_code.hpp"
 #include "common/number_text.hpp"
+#include "common/untrusted_text.hpp"
 
 namespace tongue::apps {
 
@@ -61,7 +64,7 @@ bool read_choice(const std::string& value, const Choice<T> (&choices)[N], T& out
       return true;
     }
   }
-  return fail(message + ", not '" + value + "'");
+  return fail(message + ", not " + common::quoted_untrusted(value));
 }
 
 // An integer in [min, max], or nullopt after printing message.
@@ -131,6 +134,24 @@ bool read_controllers(const std::string& value, Options& o) {
   return n.has_value();
 }
 
+bool read_url(const std::string& value, Options& o) {
+  try {
+    bus::parse_lcm_url(value);
+  } catch (const std::invalid_argument& e) {
+    return fail(std::string("--lcm-url: ") + e.what());
+  }
+  o.url = value;
+  return true;
+}
+
+bool read_prefix(const std::string& value, Options& o) {
+  if (!bus::is_valid_channel_prefix(value))
+    return fail("--prefix " + common::quoted_untrusted(value) + " " +
+                std::string(bus::kChannelPrefixRule));
+  o.prefix = value;
+  return true;
+}
+
 // An option whose value is kept as given.
 template <auto member>
 bool read_text(const std::string& value, Options& o) {
@@ -153,8 +174,8 @@ constexpr Option kOptions[] = {
     {"--help", false, print_help},
     {"-h", false, print_help},
     {"--mode", true, read_mode},
-    {"--lcm-url", true, read_text<&Options::url>},
-    {"--prefix", true, read_text<&Options::prefix>},
+    {"--lcm-url", true, read_url},
+    {"--prefix", true, read_prefix},
     {"--output", true, read_text<&Options::output>},
     {"--timeout-ms", true, read_timeout_ms},
     {"--on-silence", true, read_on_silence},

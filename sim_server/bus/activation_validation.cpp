@@ -8,13 +8,10 @@
 
 #include "bus/wire_format.hpp"
 #include "common/number_text.hpp"
+#include "common/untrusted_text.hpp"
 
 namespace tongue::bus {
 namespace {
-
-std::string quoted(const std::string& text) {
-  return "\"" + text + "\"";
-}
 
 ActivationCheck reject(std::string reason) {
   ActivationCheck check;
@@ -52,7 +49,8 @@ ActivationCheck check_activation(const tongue_lcm::lcmt_tongue_activation& msg,
   std::vector<int> named_at(muscle_names.size(), -1);
   std::vector<std::size_t> muscle_of(n);
   for (std::size_t i = 0; i < n; ++i) {
-    const std::string field = "names[" + std::to_string(i) + "] = " + quoted(msg.names[i]);
+    const std::string field =
+        "names[" + std::to_string(i) + "] = " + common::quoted_untrusted(msg.names[i]);
     std::size_t m = 0;
     while (m < muscle_names.size() && muscle_names[m] != msg.names[i]) ++m;
     if (m == muscle_names.size()) return reject(field + " is not a muscle of this model");

@@ -1,41 +1,18 @@
 #include "bus/lcm_server_bus.hpp"
 
-#include <cerrno>
-#include <iterator>
 #include <stdexcept>
 
+#include "bus/receive_limits.hpp"
+
 namespace tongue::bus {
-namespace {
-
-// Messages LCM may hold per subscription between two reads of the loop. LCM's default (30) drops
-// every message beyond it, so a burst of a few dozen bad activations could also drop the valid
-// activation or the shutdown that follows it; the ring buffer (recv_buf_size in the URL) and the
-// socket's receive buffer still bound what is held.
-constexpr int kQueueCapacity = 100000;
-
-}  // namespace
-
-LcmServerBus::LcmServerBus(const std::string& url, const Channels& channels)
-    : lcm_(url), channels_(channels) {
-  if (!lcm_.good()) throw std::runtime_error("cannot open the LCM bus at '" + url + "'");
-  for (auto* subscriber : {&activation_, &command_}) {
-    const std::string& channel =
-        subscriber == &activation_ ? channels_.activation : channels_.command;
-    lcm::Subscription* subscription =
-        lcm_.subscribeFunction(channel, &LcmServerBus::on_message, subscriber);
-    if (subscription == nullptr || subscription->setQueueCapacity(kQueueCapacity) != 0)
-      throw std::runtime_error("cannot subscribe to " + channel + " on '" + url + "'");
-  }
-}
-
-void LcmServerBus::on_message(const lcm::ReceiveBuffer* rbuf, const std::string& /*channel*/,
-                              Subscriber* subscriber) {
-  const auto* data = static_cast<const std::uint8_t*>(rbuf->data);
-  IncomingMessage message;
-  message.channel = subscriber->channel;
-  message.bytes.assign(data, data + rbuf->data_size);
-  subscriber->bus->queue_.push_back(std::move(message));
-}
+LcmServerBus::LcmServerBus(const std::string& url, const Channels& channels,
+                           std::size_t activation_limit)
+    : url_(parse_lcm_url(url)),
+      lcm_(url),
+      channels_(channels),
+      receiver_(lcm_, url_,
+                {{channels_.activation, activation_limit}, {channels_.command, kCommandLimit}},
+                "sim_server") {}
 
 template <typename Message>
 void LcmServerBus::publish(const std::string& channel, const Message& msg) {
@@ -55,17 +32,18 @@ void LcmServerBus::publish_state(const tongue_lcm::lcmt_tongue_state& msg) {
 }
 
 std::vector<IncomingMessage> LcmServerBus::receive(int timeout_ms) {
-  if (queue_.empty()) {
-    // Waits for the first message, then takes whatever else is already there without waiting.
-    int handled = lcm_.handleTimeout(timeout_ms < 0 ? 0 : timeout_ms);
-    while (handled > 0) handled = lcm_.handleTimeout(0);
-    // A signal (SIGINT, SIGTERM) interrupts the wait: the loop then looks at its stop flag.
-    if (handled < 0 && errno != EINTR)
-      throw std::runtime_error("LCM failed while receiving messages");
+  std::vector<ReceivedMessage> received;
+  // A signal (SIGINT, SIGTERM) cuts the wait short: the loop then looks at its stop flag.
+  receiver_.receive(timeout_ms, received);
+  std::vector<IncomingMessage> out;
+  out.reserve(received.size());
+  for (ReceivedMessage& m : received) {
+    IncomingMessage message;
+    message.channel = m.channel == channels_.command ? IncomingMessage::Channel::command
+                                                     : IncomingMessage::Channel::activation;
+    message.bytes = std::move(m.bytes);
+    out.push_back(std::move(message));
   }
-  std::vector<IncomingMessage> out(std::make_move_iterator(queue_.begin()),
-                                   std::make_move_iterator(queue_.end()));
-  queue_.clear();
   return out;
 }
 

@@ -21,7 +21,8 @@ class ServerBus {
   virtual void publish_model(const tongue_lcm::lcmt_tongue_model& msg) = 0;
   virtual void publish_state(const tongue_lcm::lcmt_tongue_state& msg) = 0;
   // Waits at most timeout_ms (0: does not wait) for incoming messages and returns those that
-  // arrived, in order; empty on timeout.
+  // arrived, in order, a bounded number at a time (the rest come with the next calls); empty on
+  // timeout or when a signal cut the wait short.
   virtual std::vector<IncomingMessage> receive(int timeout_ms) = 0;
 };
 

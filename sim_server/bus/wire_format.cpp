@@ -58,4 +58,65 @@ bool WireReader::string(const std::string& field, std::string& reason) {
   return true;
 }
 
+bool WireReader::fixed(const std::string& field, std::int64_t bytes, std::string& reason) {
+  if (left() < bytes) {
+    reason = field + " is cut off: " + std::to_string(bytes) + " bytes needed, " +
+             std::to_string(left()) + " left (truncated)";
+    return false;
+  }
+  pos_ += bytes;
+  return true;
+}
+
+bool WireReader::count(const std::string& field, std::int64_t min_bytes_each, std::int32_t& n,
+                       std::string& reason) {
+  if (left() < 4) {
+    reason = field + " is cut off (truncated)";
+    return false;
+  }
+  n = int32();
+  if (n < 0) {
+    reason = field + " = " + std::to_string(n) + " is negative";
+    return false;
+  }
+  // 64-bit: n * min_bytes_each can exceed int32.
+  const std::int64_t needed = static_cast<std::int64_t>(n) * min_bytes_each;
+  if (needed > left()) {
+    reason = field + " = " + std::to_string(n) + " needs at least " + std::to_string(needed) +
+             " bytes, " + std::to_string(left()) + " left (truncated?)";
+    return false;
+  }
+  return true;
+}
+
+bool WireReader::strings(const std::string& field, std::int32_t count, std::string& reason) {
+  for (std::int32_t i = 0; i < count; ++i)
+    if (!string(field + "[" + std::to_string(i) + "]", reason)) return false;
+  return true;
+}
+
+bool WireReader::at_end(std::string& reason) const {
+  if (left() == 0) return true;
+  reason = std::to_string(left()) + " trailing bytes after the message";
+  return false;
+}
+
+bool start_message(WireReader& in, std::int64_t fingerprint, std::int64_t min_size,
+                   const std::string& what, std::string& reason) {
+  if (!in.valid()) {
+    reason = what + "no data";
+    return false;
+  }
+  if (in.left() < min_size) {
+    reason = what + "message is " + std::to_string(in.left()) + " bytes, shorter than the " +
+             std::to_string(min_size) + " of the shortest one";
+    return false;
+  }
+  if (in.int64() != fingerprint) {
+    reason = what + "fingerprint does not match: the bytes are another type or garbage";
+    return false;
+  }
+  return true;
+}
+
 }  // namespace tongue::bus

@@ -29,6 +29,18 @@ class WireReader {
   // its length is cut off, below 1, beyond the bytes left, or its last byte is not the NUL.
   bool string(const std::string& field, std::string& reason);
 
+  // The checked steps of a message's layout; each returns false with reason naming field.
+  // Steps over bytes bytes of fixed-size fields (cut off: truncated).
+  bool fixed(const std::string& field, std::int64_t bytes, std::string& reason);
+  // Reads an int32 count into n: rejected when cut off, negative, or when n elements of at least
+  // min_bytes_each bytes each cannot fit in what is left (so nothing is sized by a hostile n).
+  bool count(const std::string& field, std::int64_t min_bytes_each, std::int32_t& n,
+             std::string& reason);
+  // Steps over count strings named field[i].
+  bool strings(const std::string& field, std::int32_t count, std::string& reason);
+  // True when the check is at the end; otherwise false with reason counting trailing bytes.
+  bool at_end(std::string& reason) const;
+
  private:
   std::uint64_t big_endian(int count);
 
@@ -37,6 +49,11 @@ class WireReader {
   std::int64_t pos_ = 0;
   bool valid_;
 };
+
+// Checks that data holds at least min_size bytes and starts with fingerprint; false with reason
+// otherwise. in reads data; what prefixes reason ("lcmt_tongue_state: ").
+bool start_message(WireReader& in, std::int64_t fingerprint, std::int64_t min_size,
+                   const std::string& what, std::string& reason);
 
 // lcm-gen's decode() of a message whose structure the caller has checked with a WireReader: the
 // last step of every decoder here. False, with reason prefixed by what, when decode() still

@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <fstream>
 #include <set>
-#include <sstream>
 
+#include "common/bounded_file.hpp"
 #include "common/number_text.hpp"
 
 namespace tongue::common {
@@ -31,12 +30,7 @@ std::string describe(const YAML::Node& n) {
 }
 
 YamlReader YamlReader::load(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw KeyPathError(path, "", "cannot open the file");
-  std::ostringstream text;
-  text << in.rdbuf();
-  if (in.bad()) throw KeyPathError(path, "", "cannot read the file");
-  return parse(text.str(), path);
+  return parse(read_bounded_file(path), path);
 }
 
 YamlReader YamlReader::parse(const std::string& text, const std::string& source) {

@@ -2,6 +2,8 @@
 
 #include <utility>
 
+#include "common/untrusted_text.hpp"
+
 namespace tongue::server {
 namespace {
 
@@ -98,7 +100,7 @@ void ControlInput::record_command(const bus::IncomingMessage& message, std::int6
   }
   const std::optional<bus::Command> command = bus::parse_command(msg.command);
   if (!command) {
-    reject("unknown command", "'" + msg.command + "'", step);
+    reject("unknown command", common::quoted_untrusted(msg.command), step);
     return;
   }
   command_ = command;

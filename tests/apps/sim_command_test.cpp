@@ -47,7 +47,7 @@ TEST_F(SimCommand, PausesAndShutsDownARunningServer) {
 TEST_F(SimCommand, RejectsAnUnknownCommandAndABadPrefix) {
   const auto unknown = run_command(SIM_COMMAND_PATH, "explode", dir_);
   EXPECT_EQ(unknown.exit_code, 1);
-  EXPECT_NE(unknown.err.find("unexpected argument 'explode'"), std::string::npos) << unknown.err;
+  EXPECT_NE(unknown.err.find("unexpected argument \"explode\""), std::string::npos) << unknown.err;
   const auto prefix = run_command(SIM_COMMAND_PATH, "pause --prefix bad-prefix", dir_);
   EXPECT_EQ(prefix.exit_code, 1);
   EXPECT_NE(prefix.err.find("UPPER_SNAKE"), std::string::npos) << prefix.err;

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 
 #ifndef TONGUE_SOURCE_DIR
 #error "TONGUE_SOURCE_DIR must name the source tree"
@@ -36,14 +37,27 @@ TEST(Channels, EmptyPrefixIsAllowed) {
 }
 
 TEST(Channels, BadPrefixThrowsNamingIt) {
-  for (const char* prefix : {"tongue_", "TONGUE-", "TONGUE.", "TONGUE ", "TÖNGUE_"}) {
+  // Named as printed: bytes outside printable ASCII escaped.
+  const std::pair<std::string, std::string> cases[] = {
+      {"tongue_", "tongue_"}, {"TONGUE-", "TONGUE-"},          {"TONGUE.", "TONGUE."},
+      {"TONGUE ", "TONGUE "}, {"TÖNGUE_", "T\\xc3\\x96NGUE_"}, {"A\nB", "A\\nB"}};
+  for (const auto& [prefix, shown] : cases) {
     try {
       const Channels channels(prefix);
       ADD_FAILURE() << "no exception for prefix " << prefix;
     } catch (const std::invalid_argument& e) {
-      EXPECT_NE(std::string(e.what()).find(prefix), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("\"" + shown + "\""), std::string::npos) << e.what();
     }
   }
+}
+
+// LCM's channel names are at most 63 characters: the prefix leaves room for "ACTIVATION".
+TEST(Channels, PrefixLengthFitsLcmChannelNames) {
+  const std::string longest(kMaxChannelPrefix, 'A');
+  EXPECT_TRUE(is_valid_channel_prefix(longest));
+  EXPECT_EQ(Channels(longest).activation.size(), kMaxChannelName);
+  EXPECT_FALSE(is_valid_channel_prefix(longest + "A"));
+  EXPECT_THROW(Channels(std::string(300, 'A')), std::invalid_argument);
 }
 
 TEST(Channels, PrefixValidation) {

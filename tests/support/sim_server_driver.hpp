@@ -75,6 +75,8 @@ class ChildProcess {
   ChildProcess& operator=(const ChildProcess&) = delete;
 
   bool started() const { return pid_ > 0; }
+  // The process id while it runs (not yet reaped), else -1.
+  pid_t pid() const { return pid_; }
   void signal(int sig) const {
     if (pid_ > 0) kill(pid_, sig);
   }

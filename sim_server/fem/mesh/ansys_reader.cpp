@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -62,6 +63,15 @@ void for_each_data_line(
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) {
     throw MeshReadError(path, 0, std::string("cannot read ") + what + " file: is a directory");
+  }
+  // A device or a pipe (/dev/zero) could be read for ever; a mesh file of more than 1 GiB
+  // (some 10 million nodes) is a wrong path, not a tongue.
+  constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{1} << 30;
+  if (std::filesystem::exists(path, ec) && !std::filesystem::is_regular_file(path, ec)) {
+    throw MeshReadError(path, 0, std::string("cannot read ") + what + " file: not a regular file");
+  }
+  if (const auto size = std::filesystem::file_size(path, ec); !ec && size > kMaxMeshFileBytes) {
+    throw MeshReadError(path, 0, std::string(what) + " file is larger than 1 GiB");
   }
   std::ifstream in(path);
   if (!in) throw MeshReadError(path, 0, std::string("cannot open ") + what + " file");

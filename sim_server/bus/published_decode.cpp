@@ -1,0 +1,102 @@
+#include "bus/published_decode.hpp"
+
+#include <cstdint>
+
+#include "bus/wire_format.hpp"
+
+namespace tongue::bus {
+namespace {
+
+constexpr int kInt32 = 4;
+constexpr int kInt64 = 8;
+constexpr int kDouble = 8;
+constexpr int kBoolean = 1;
+constexpr int kMinString = 4 + 1;  // length prefix and the NUL
+
+bool relation(const std::string& what, const std::string& name, std::int32_t value,
+              const std::string& of, std::int32_t base, std::int64_t factor, std::string& reason) {
+  if (static_cast<std::int64_t>(value) == factor * base) return true;
+  reason = what + name + " = " + std::to_string(value) + " is not " + std::to_string(factor) +
+           " * " + of + " (" + std::to_string(base) + ")";
+  return false;
+}
+
+// The layout of lcmt_tongue_state after the fingerprint (lcmtypes/lcmt_tongue_state.lcm).
+bool state_layout(WireReader& in, std::int32_t& nodes, std::int32_t& positions,
+                  std::string& reason) {
+  std::int32_t muscles = 0;
+  return in.fixed("utime, step, time", kInt64 + kInt64 + kDouble, reason) &&
+         in.count("num_nodes", kInt32, nodes, reason) &&
+         in.fixed("node_indices", std::int64_t{kInt32} * nodes, reason) &&
+         in.count("num_positions", kDouble, positions, reason) &&
+         in.fixed("positions", std::int64_t{kDouble} * positions, reason) &&
+         in.count("num_muscles", 3 * kDouble, muscles, reason) &&
+         in.fixed("muscle_lengths, muscle_velocities, activations",
+                  std::int64_t{3 * kDouble} * muscles, reason) &&
+         in.fixed("newton_iterations, residual_norm, step_wall_time, step_cuts, converged",
+                  kInt32 + kDouble + kDouble + kInt32 + kBoolean, reason) &&
+         in.string("status", reason) &&
+         in.fixed("rejected_messages, overruns", kInt64 + kInt64, reason) && in.at_end(reason);
+}
+
+// The layout of lcmt_tongue_model after the fingerprint (lcmtypes/lcmt_tongue_model.lcm).
+struct ModelCounts {
+  std::int32_t nodes = 0, rest = 0, elements = 0, element_nodes = 0;
+};
+bool model_layout(WireReader& in, ModelCounts& c, std::string& reason) {
+  std::int32_t muscles = 0, landmarks = 0;
+  return in.fixed("utime", kInt64, reason) && in.count("num_nodes", 0, c.nodes, reason) &&
+         in.count("num_rest_positions", kDouble, c.rest, reason) &&
+         in.fixed("rest_positions", std::int64_t{kDouble} * c.rest, reason) &&
+         in.count("num_elements", 0, c.elements, reason) &&
+         in.count("num_element_nodes", kInt32, c.element_nodes, reason) &&
+         in.fixed("elements", std::int64_t{kInt32} * c.element_nodes, reason) &&
+         in.count("num_muscles", kMinString + kDouble, muscles, reason) &&
+         in.strings("muscle_names", muscles, reason) &&
+         in.fixed("muscle_max_forces", std::int64_t{kDouble} * muscles, reason) &&
+         in.count("num_landmarks", kMinString + kInt32, landmarks, reason) &&
+         in.strings("landmark_names", landmarks, reason) &&
+         in.fixed("landmark_nodes", std::int64_t{kInt32} * landmarks, reason) &&
+         in.fixed("dt", kDouble, reason) && in.string("scene", reason) && in.at_end(reason);
+}
+
+}  // namespace
+
+bool decode_state(const void* data, int size, tongue_lcm::lcmt_tongue_state& out,
+                  std::string& reason) {
+  const std::string what = "lcmt_tongue_state: ";
+  // The shortest state: no nodes, no muscles, an empty status.
+  constexpr int kShortest =
+      kInt64 * 4 + kInt32 * 3 + kInt32 + kDouble * 2 + kInt32 + kBoolean + kMinString + kInt64 * 2;
+  WireReader in(data, size);
+  if (!start_message(in, tongue_lcm::lcmt_tongue_state::getHash(), kShortest, what, reason))
+    return false;
+  std::int32_t nodes = 0, positions = 0;
+  if (!state_layout(in, nodes, positions, reason)) {
+    reason = what + reason;
+    return false;
+  }
+  if (!relation(what, "num_positions", positions, "num_nodes", nodes, 3, reason)) return false;
+  return checked_decode(data, size, out, what, reason);
+}
+
+bool decode_model(const void* data, int size, tongue_lcm::lcmt_tongue_model& out,
+                  std::string& reason) {
+  const std::string what = "lcmt_tongue_model: ";
+  // The shortest model: nothing in it, an empty scene.
+  constexpr int kShortest = kInt64 * 2 + kInt32 * 6 + kDouble + kMinString;
+  WireReader in(data, size);
+  if (!start_message(in, tongue_lcm::lcmt_tongue_model::getHash(), kShortest, what, reason))
+    return false;
+  ModelCounts c;
+  if (!model_layout(in, c, reason)) {
+    reason = what + reason;
+    return false;
+  }
+  if (!relation(what, "num_rest_positions", c.rest, "num_nodes", c.nodes, 3, reason) ||
+      !relation(what, "num_element_nodes", c.element_nodes, "num_elements", c.elements, 8, reason))
+    return false;
+  return checked_decode(data, size, out, what, reason);
+}
+
+}  // namespace tongue::bus
