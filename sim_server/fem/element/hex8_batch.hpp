@@ -40,10 +40,17 @@ struct ElementBatchResponse {
   std::array<bool, kBatchLanes> ok;  // false: det F <= 0 (or NaN) at a Gauss point
 };
 
+// The instruction sets the kernel is compiled for, each with its own vector width, so that one
+// binary runs on any x86-64 and uses what the CPU has.
+enum class SimdLevel { sse2, avx2, avx512 };
+// The best one this CPU runs (AVX2 means x86-64-v3, with FMA; AVX-512 means x86-64-v4).
+SimdLevel best_simd_level();
+
 // Internal force and energy of every element of the batch; an element with ok false has an
-// undefined force and energy.
+// undefined force and energy. Every level gives the same results to round-off (their sums differ
+// in fused multiply-adds). Throws std::invalid_argument for a level above best_simd_level().
 void evaluate_batch_force(const ElementBatchGeometry& geometry, const BatchCoords& x,
                           const UncoupledMaterial& material, Formulation formulation,
-                          ElementBatchResponse& response);
+                          ElementBatchResponse& response, SimdLevel level = best_simd_level());
 
 }  // namespace tongue::fem
