@@ -6,9 +6,9 @@
 #include <stdexcept>
 #include <string>
 
-// The kernel computes on GCC vector types of 8 doubles. The helpers that take or return them are
-// internal and always inlined into the kernel, so the argument-passing ABI of such types (which
-// differs between SSE2 and AVX-512 code, what -Wpsabi warns about) never crosses a call.
+// The kernels compute on GCC vector types of 2, 4 or 8 doubles. The helpers that take or return
+// them are internal and always inlined into a kernel, so the argument-passing ABI of such types
+// (which differs between SSE2 and AVX-512 code, what -Wpsabi warns about) never crosses a call.
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace tongue::fem {

@@ -1,8 +1,9 @@
 #pragma once
 // The residual kernel of uncoupled materials (W = W_iso + U(J)), vectorized across elements:
 // a batch holds up to kBatchLanes elements as structure of arrays, lane l being element l of the
-// batch, so that every operation at a Gauss point is one operation on the 8 elements' values
-// (docs/speed.md). Same formulas as the tangent path and the reference element of the tests.
+// batch, so that an operation at a Gauss point works on several elements at once (2, 4 or 8, the
+// CPU's vector width; docs/speed.md). Same formulas as the tangent path and the reference element
+// of the tests.
 #include <array>
 #include <span>
 
