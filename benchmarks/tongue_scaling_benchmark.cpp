@@ -7,10 +7,12 @@
 // --steps dynamic steps of SG 3 N are timed (cost per step, wall), and the parts are timed at the
 // settled state: residual alone, residual + tangent, numeric factorization and one solve
 // (medians of --reps). Also a step at rest (no muscle active) for the rest cost.
-// Times are the thread's CPU time on 1 thread (robust on a shared machine), wall time otherwise;
-// the factorization is always wall time (CHOLMOD uses threads of its own).
+// Times are the thread's CPU time on 1 thread (robust on a shared machine), wall time otherwise
+// or with --wall (to compare 1 and 2 threads on the same clock); the factorization is always wall
+// time (CHOLMOD uses threads of its own).
 //
 // Usage: tongue_scaling_benchmark [--max-refinement N] [--steps N] [--reps N] [--threads N]
+//                                 [--wall]
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -95,8 +97,12 @@ Row measure(const scene::Scene& base, int refinement, int steps, int reps, int t
     const double solid_only = median_seconds(reps, [&] { solid.assemble(u, f, nullptr); });
     const fem::SymmetricMatrix M0 = solid.mass_matrix(false);
     const double product = median_seconds(reps, [&] { M0.multiply_add(u.head(row.free_dofs), f); });
-    std::printf("  refinement %d: solid alone %.3f ms, one product with M %.3f ms\n", refinement,
-                solid_only * 1e3, product * 1e3);
+    const double fibres =
+        median_seconds(reps, [&] { built.muscles->add(u, 1.0, f, nullptr); });  // SG active
+    std::printf(
+        "  refinement %d: solid alone %.3f ms, fibre forces (SG) %.3f ms, one product with M "
+        "%.3f ms\n",
+        refinement, solid_only * 1e3, fibres * 1e3, product * 1e3);
   }
   built.muscles->set_activations(fem::Vector::Zero(built.muscles->num_muscles()));
   row.tangent = median_seconds(std::max(1, reps / 3), [&] {
@@ -167,8 +173,13 @@ double fitted_exponent(const std::vector<Row>& rows, double Row::*field) {
 
 int run(int argc, char** argv) {
   int max_refinement = 2, steps = 30, reps = 15, threads = 1;
+  bool wall = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
+    if (a == "--wall") {
+      wall = true;
+      continue;
+    }
     auto value = [&] {
       if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
       return std::stoi(argv[++i]);
@@ -184,7 +195,7 @@ int run(int argc, char** argv) {
     else
       throw std::invalid_argument("unknown option '" + a + "'");
   }
-  g_thread_clock = threads == 1;
+  g_thread_clock = threads == 1 && !wall;
   const scene::Scene base =
       scene::read_scene(std::string(TONGUE_SOURCE_DIR) + "/scenes/tongue_sg_3n.yaml");
   std::vector<Row> rows;

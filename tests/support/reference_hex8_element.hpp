@@ -1,7 +1,7 @@
 #pragma once
 // The hexahedron as it was evaluated before the fast kernels (docs/speed.md): the straightforward
 // loop over Gauss points through Material::response, kept only as a reference that the optimized
-// element (fem/element/hex8_element.cpp) must reproduce to round-off.
+// element (fem/element/hex8_element.cpp, hex8_batch.cpp) must reproduce to round-off.
 #include <algorithm>
 #include <limits>
 #include <stdexcept>

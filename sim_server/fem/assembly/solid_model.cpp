@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <mutex>
+#include <span>
 #include <stdexcept>
 #include <string>
 
@@ -36,6 +37,12 @@ SolidModel::SolidModel(Mesh mesh, std::shared_ptr<const Material> material, Form
       throw std::invalid_argument("element " + std::to_string(e) + ": " + err.what());
     }
   }
+  if (material_->as_uncoupled() != nullptr) {
+    for (int first = 0; first < mesh_.num_elements(); first += kBatchLanes) {
+      const int count = std::min(kBatchLanes, mesh_.num_elements() - first);
+      batches_.push_back(make_batch_geometry(std::span(geometry_).subspan(first, count)));
+    }
+  }
   AssemblyPattern assembly = build_assembly_pattern(mesh_, dofs_, extra_node_pairs);
   pattern_ = std::make_shared<const SparsityPattern>(std::move(assembly.pattern));
   element_scatter_ = std::move(assembly.element_scatter);
@@ -66,6 +73,8 @@ constexpr int kBlockElements = 1024;
 struct SolidModel::Workspace {
   std::mutex mutex;  // one assembly at a time uses it
   std::vector<int> elements;
+  std::vector<int> batches;
+  std::vector<ElementBatchResponse> batch_results;
   std::vector<ElementVector> force;
   std::vector<ElementMatrix> stiffness;
   std::vector<double> energy, min_J;
@@ -114,8 +123,10 @@ AssemblyStatus SolidModel::add_weighted(const Vector& u, const std::vector<doubl
   if (!weights.empty() && static_cast<int>(weights.size()) != mesh_.num_elements()) {
     throw std::invalid_argument("element weights: one per element expected");
   }
-  const auto weight = [&](int e) { return weights.empty() ? 1.0 : weights[e]; };
   const bool want_stiffness = stiffness != nullptr;
+  if (!want_stiffness && !batches_.empty())
+    return add_batches(u, weights, internal_force, strain_energy);
+  const auto weight = [&](int e) { return weights.empty() ? 1.0 : weights[e]; };
   AssemblyStatus status;
   status.min_J = std::numeric_limits<double>::infinity();
 
@@ -179,6 +190,93 @@ AssemblyStatus SolidModel::add_weighted(const Vector& u, const std::vector<doubl
       if (strain_energy) *strain_energy += w * ws.energy[i];
       scatter(e, w, ws.force[i], want_stiffness ? &ws.stiffness[i] : nullptr, internal_force,
               stiffness);
+    }
+  }
+  return status;
+}
+
+BatchCoords SolidModel::batch_coords(int b, const Vector& u) const {
+  BatchCoords x;
+  const int count = batches_[b].count;
+  for (int l = 0; l < kBatchLanes; ++l) {
+    // Lanes past count repeat the batch's first element, as its geometry does.
+    const int e = kBatchLanes * b + (l < count ? l : 0);
+    const hex8::ElementCoords& X = rest_coords_[e];
+    const Hex8& nodes = mesh_.elements[e];
+    for (int a = 0; a < 8; ++a)
+      for (int i = 0; i < 3; ++i) x[3 * a + i].lane[l] = X(a, i) + u[3 * nodes[a] + i];
+  }
+  return x;
+}
+
+bool SolidModel::add_batch_result(int b, const ElementBatchResponse& r,
+                                  const std::vector<double>& weights, Vector& internal_force,
+                                  double* strain_energy, AssemblyStatus& status) const {
+  for (int l = 0; l < batches_[b].count; ++l) {
+    const int e = kBatchLanes * b + l;
+    const double w = weights.empty() ? 1.0 : weights[e];
+    if (w == 0.0) continue;
+    status.min_J = std::min(status.min_J, r.min_J.lane[l]);
+    if (!r.ok[l]) {
+      status.ok = false;
+      status.inverted_element = e;
+      return false;
+    }
+    if (strain_energy) *strain_energy += w * r.energy.lane[l];
+    const Hex8& nodes = mesh_.elements[e];
+    for (int a = 0; a < 8; ++a)
+      for (int i = 0; i < 3; ++i)
+        internal_force[3 * nodes[a] + i] += w * r.force[3 * a + i].lane[l];
+  }
+  return true;
+}
+
+AssemblyStatus SolidModel::add_batches(const Vector& u, const std::vector<double>& weights,
+                                       Vector& internal_force, double* strain_energy) const {
+  const UncoupledMaterial& material = *material_->as_uncoupled();
+  AssemblyStatus status;
+  status.min_J = std::numeric_limits<double>::infinity();
+  // A batch whose elements all have weight 0 is skipped, as the element loop skips them.
+  const auto active = [&](int b) {
+    if (weights.empty()) return true;
+    for (int l = 0; l < batches_[b].count; ++l)
+      if (weights[kBatchLanes * b + l] != 0.0) return true;
+    return false;
+  };
+  const int num_batches = static_cast<int>(batches_.size());
+
+  if (!pool_) {
+    ElementBatchResponse r;
+    for (int b = 0; b < num_batches; ++b) {
+      if (!active(b)) continue;
+      evaluate_batch_force(batches_[b], batch_coords(b, u), material, formulation_, r);
+      if (!add_batch_result(b, r, weights, internal_force, strain_energy, status)) return status;
+    }
+    return status;
+  }
+
+  // Several threads: as in add_weighted, batches evaluated in parallel, summed here in order.
+  Workspace& ws = *workspace_;
+  const std::lock_guard lock(ws.mutex);
+  ws.batches.clear();
+  for (int b = 0; b < num_batches; ++b)
+    if (active(b)) ws.batches.push_back(b);
+  const int total = static_cast<int>(ws.batches.size());
+  const int block = std::min(total, kBlockElements / kBatchLanes);
+  ws.batch_results.resize(block);
+  for (int first = 0; first < total; first += block) {
+    const int count = std::min(block, total - first);
+    pool_->parallel_for(count, [&](int begin, int end) {
+      for (int i = begin; i < end; ++i) {
+        const int b = ws.batches[first + i];
+        evaluate_batch_force(batches_[b], batch_coords(b, u), material, formulation_,
+                             ws.batch_results[i]);
+      }
+    });
+    for (int i = 0; i < count; ++i) {
+      if (!add_batch_result(ws.batches[first + i], ws.batch_results[i], weights, internal_force,
+                            strain_energy, status))
+        return status;
     }
   }
   return status;

@@ -10,6 +10,7 @@
 #include "fem/assembly/dof_map.hpp"
 #include "fem/assembly/sparse_matrix.hpp"
 #include "fem/assembly/worker_pool.hpp"
+#include "fem/element/hex8_batch.hpp"
 #include "fem/element/hex8_element.hpp"
 #include "fem/material/material.hpp"
 #include "fem/mesh/mesh.hpp"
@@ -78,6 +79,16 @@ class SolidModel {
   // Adds w times one element's force and tangent (when K is given) to the global arrays.
   void scatter(int e, double w, const ElementVector& force, const ElementMatrix* stiffness,
                Vector& internal_force, SymmetricMatrix* K) const;
+  // The residual path of an uncoupled material: the elements in batches of kBatchLanes
+  // (hex8_batch.hpp), batch b holding elements kBatchLanes b onwards.
+  AssemblyStatus add_batches(const Vector& u, const std::vector<double>& weights,
+                             Vector& internal_force, double* strain_energy) const;
+  BatchCoords batch_coords(int b, const Vector& u) const;
+  // Adds batch b's weighted forces and energies in element order; false, with status telling
+  // which element, at an inverted element.
+  bool add_batch_result(int b, const ElementBatchResponse& r, const std::vector<double>& weights,
+                        Vector& internal_force, double* strain_energy,
+                        AssemblyStatus& status) const;
 
   Mesh mesh_;
   std::shared_ptr<const Material> material_;
@@ -86,6 +97,7 @@ class SolidModel {
   DofMap dofs_;
   Vector rest_positions_;
   std::vector<ElementGeometry> geometry_;
+  std::vector<ElementBatchGeometry> batches_;     // empty unless the material is uncoupled
   std::vector<hex8::ElementCoords> rest_coords_;  // per element, gathered once
   std::shared_ptr<const SparsityPattern> pattern_;
   std::vector<std::array<int, 24 * 24>> element_scatter_;

@@ -6,6 +6,8 @@
 #include <limits>
 #include <stdexcept>
 
+#include "fem/element/hex8_batch.hpp"
+
 namespace tongue::fem {
 
 ElementGeometry make_element_geometry(const hex8::ElementCoords& X) {
@@ -22,11 +24,6 @@ ElementGeometry make_element_geometry(const hex8::ElementCoords& X) {
     g.dN_dX[q] = dN_dxi * jac.inverse();
     g.weight[q] = rule[q].weight * det;
     g.volume += g.weight[q];
-  }
-  for (int q = 0; q < 8; ++q) {
-    g.weights[q] = g.weight[q];
-    for (int J = 0; J < 3; ++J)
-      for (int a = 0; a < 8; ++a) g.gradient_by_point[8 * J + a][q] = g.dN_dX[q](a, J);
   }
   return g;
 }
@@ -68,95 +65,21 @@ void add_stress_force(const hex8::ShapeGradients& G, const Mat3& P, double w, El
   for (int a = 0; a < 8; ++a) f.segment<3>(3 * a) += w * nodal.row(a).transpose();
 }
 
-// The residual path of an uncoupled material, all 8 Gauss points at once (one per lane of
-// PointValues, so that every operation is a vector operation): F, adj F = J F^{-1} and J, the
-// invariants, and the stress of add_isochoric (uncoupled_material.cpp) written out with
-// s1 = 2 W1 J^{-2/3}, s2 = 2 W2 J^{-4/3}, T = F^{-T} = adj^T / J:
-//   P_iso = (s1 + s2 I1) F - s2 F C - (s1 I1 / 3 + 2 s2 I2 / 3) T,
-// plus the pressure term U' J T = U' adj^T: at U'(J) per point (standard) or U'(v / V) for the
-// whole element (mean dilatation, where v = sum w J; its force d(V U)/dx = U' dv/dx with
-// d(w J)/dx_a = w adj(F)^T dN_a/dX, Bonet & Wood 2008 sec. 9.4, so it needs no separate dv/dx).
+// The residual path of an uncoupled material: the batch kernel (hex8_batch.hpp) on a batch of
+// this element alone.
 bool uncoupled_element_force(const ElementGeometry& geometry, const hex8::ElementCoords& x,
-                             const UncoupledMaterial& material, bool mean_dilatation,
+                             const UncoupledMaterial& material, Formulation formulation,
                              ElementResponse& r) {
-  using P8 = PointValues;
-  const auto& G = geometry.gradient_by_point;
-  P8 F[3][3];  // F_iJ = sum_a x_ai dN_a/dX_J
-  for (int i = 0; i < 3; ++i) {
-    for (int J = 0; J < 3; ++J) {
-      P8 sum = x(0, i) * G[8 * J];
-      for (int a = 1; a < 8; ++a) sum += x(a, i) * G[8 * J + a];
-      F[i][J] = sum;
-    }
-  }
-  P8 adj[3][3];  // adj(F) = det(F) F^{-1}
-  adj[0][0] = F[1][1] * F[2][2] - F[1][2] * F[2][1];
-  adj[0][1] = F[0][2] * F[2][1] - F[0][1] * F[2][2];
-  adj[0][2] = F[0][1] * F[1][2] - F[0][2] * F[1][1];
-  adj[1][0] = F[1][2] * F[2][0] - F[1][0] * F[2][2];
-  adj[1][1] = F[0][0] * F[2][2] - F[0][2] * F[2][0];
-  adj[1][2] = F[0][2] * F[1][0] - F[0][0] * F[1][2];
-  adj[2][0] = F[1][0] * F[2][1] - F[1][1] * F[2][0];
-  adj[2][1] = F[0][1] * F[2][0] - F[0][0] * F[2][1];
-  adj[2][2] = F[0][0] * F[1][1] - F[0][1] * F[1][0];
-  const P8 J = F[0][0] * adj[0][0] + F[0][1] * adj[1][0] + F[0][2] * adj[2][0];
-  r.min_J = J.minCoeff();
-  if (!(r.min_J > 0.0)) return false;
-
-  P8 C[3][3];  // C = F^T F, symmetric
-  for (int I = 0; I < 3; ++I) {
-    for (int K = I; K < 3; ++K) {
-      C[I][K] = F[0][I] * F[0][K] + F[1][I] * F[1][K] + F[2][I] * F[2][K];
-      C[K][I] = C[I][K];
-    }
-  }
-  const P8 I1 = C[0][0] + C[1][1] + C[2][2];
-  const P8 CC = C[0][0] * C[0][0] + C[1][1] * C[1][1] + C[2][2] * C[2][2] +
-                2.0 * (C[0][1] * C[0][1] + C[0][2] * C[0][2] + C[1][2] * C[1][2]);
-  const P8 I2 = 0.5 * (I1 * I1 - CC);
-  P8 a1, s1, s2, energy_density, pressure;
-  const double v = (geometry.weights * J).sum();
-  double energy = 0.0;
-  if (mean_dilatation) {
-    const VolumetricResponse U = material.volumetric(v / geometry.volume);
-    energy += geometry.volume * U.energy;
-    pressure.setConstant(U.first);
-  }
-  bool uses_I2 = false;
-  for (int q = 0; q < 8; ++q) {
-    const double c = std::cbrt(J[q]);
-    const double j23 = 1.0 / (c * c);  // J^{-2/3}
-    const InvariantDerivatives w = material.isochoric_derivatives(j23 * I1[q], j23 * j23 * I2[q]);
-    s1[q] = 2.0 * w.d1 * j23;
-    s2[q] = 2.0 * w.d2 * j23 * j23;
-    uses_I2 = uses_I2 || w.d2 != 0.0;
-    energy_density[q] = w.energy;
-    if (!mean_dilatation) {
-      const VolumetricResponse U = material.volumetric(J[q]);
-      energy_density[q] += U.energy;
-      pressure[q] = U.first;
-    }
-  }
-  energy += (geometry.weights * energy_density).sum();
-  // w P_iJ = w [(s1 + s2 I1) F - s2 F C - (t - p) adj^T], t = (s1 I1 + 2 s2 I2) / (3 J)
-  const P8 wf = geometry.weights * (s1 + s2 * I1);
-  const P8 wt = geometry.weights * ((s1 * I1 + 2.0 * s2 * I2) / (3.0 * J) - pressure);
-  const P8 ws2 = geometry.weights * s2;
-  P8 wP[3][3];
-  for (int i = 0; i < 3; ++i) {
-    for (int K = 0; K < 3; ++K) {
-      wP[i][K] = wf * F[i][K] - wt * adj[K][i];
-      if (uses_I2) wP[i][K] -= ws2 * (F[i][0] * C[0][K] + F[i][1] * C[1][K] + F[i][2] * C[2][K]);
-    }
-  }
-  // f_ai = sum over points and J of w P_iJ dN_a/dX_J.
-  for (int a = 0; a < 8; ++a) {
-    for (int i = 0; i < 3; ++i) {
-      r.force[3 * a + i] = (wP[i][0] * G[a] + wP[i][1] * G[8 + a] + wP[i][2] * G[16 + a]).sum();
-    }
-  }
-  r.energy = energy;
-  return true;
+  const ElementBatchGeometry batch = make_batch_geometry({&geometry, 1});
+  BatchCoords coords;
+  for (int a = 0; a < 8; ++a)
+    for (int i = 0; i < 3; ++i) coords[3 * a + i].lane.fill(x(a, i));
+  ElementBatchResponse response;
+  evaluate_batch_force(batch, coords, material, formulation, response);
+  for (int k = 0; k < 24; ++k) r.force[k] = response.force[k].lane[0];
+  r.energy = response.energy.lane[0];
+  r.min_J = response.min_J.lane[0];
+  return response.ok[0];
 }
 
 // The residual path of a material without the isochoric/volumetric split (standard
@@ -253,8 +176,7 @@ bool evaluate_element(const ElementGeometry& geometry, const hex8::ElementCoords
   }
   if (want_stiffness)
     return element_with_tangent(geometry, x, material, uncoupled, mean_dilatation, r);
-  if (uncoupled != nullptr)
-    return uncoupled_element_force(geometry, x, *uncoupled, mean_dilatation, r);
+  if (uncoupled != nullptr) return uncoupled_element_force(geometry, x, *uncoupled, formulation, r);
   return coupled_element_force(geometry, x, material, r);
 }
 

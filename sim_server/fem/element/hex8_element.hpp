@@ -19,18 +19,11 @@ enum class Formulation { standard, mean_dilatation };
 using ElementVector = Eigen::Matrix<double, 24, 1>;  // dof 3a + i: node a, component i
 using ElementMatrix = Eigen::Matrix<double, 24, 24>;
 
-// Values at the 8 Gauss points, one per lane: the residual kernel works on all points at once.
-using PointValues = Eigen::Array<double, 8, 1>;
-
 // Reference-configuration data of one element, computed once.
 struct ElementGeometry {
   std::array<hex8::ShapeGradients, 8> dN_dX;  // per Gauss point: row a = dN_a/dX
   std::array<double, 8> weight;               // Gauss weight x det(dX/dxi) [m^3]
   double volume = 0.0;                        // V [m^3]
-  // The same gradients by component and node, over the Gauss points: entry 8 J + a holds
-  // dN_a/dX_J at the 8 points.
-  std::array<PointValues, 24> gradient_by_point;
-  PointValues weights;  // weight[] as lanes
 };
 
 // Throws std::invalid_argument when det(dX/dxi) <= 0 at a Gauss point.

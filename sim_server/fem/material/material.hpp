@@ -54,6 +54,11 @@ class UncoupledMaterial : public Material {
   explicit UncoupledMaterial(double bulk_modulus);
 
   virtual InvariantDerivatives isochoric_derivatives(double I1_bar, double I2_bar) const = 0;
+  // W_iso, dW/dI1b and dW/dI2b at n points at once, for the residual kernel (it needs no second
+  // derivatives); every pointer holds n values. The default calls isochoric_derivatives point by
+  // point; a law overrides it when a loop over its formula is cheaper than n virtual calls.
+  virtual void isochoric_first_derivatives(int n, const double* I1_bar, const double* I2_bar,
+                                           double* energy, double* d1, double* d2) const;
 
   PointResponse response(const Mat3& F, bool with_tangent = true) const override;
   const UncoupledMaterial* as_uncoupled() const override { return this; }

@@ -27,6 +27,8 @@ class MooneyRivlin5 final : public UncoupledMaterial {
   std::string name() const override { return "mooney_rivlin5"; }
   double initial_shear_modulus() const override { return initial_shear_modulus(c_); }
   InvariantDerivatives isochoric_derivatives(double I1_bar, double I2_bar) const override;
+  void isochoric_first_derivatives(int n, const double* I1_bar, const double* I2_bar,
+                                   double* energy, double* d1, double* d2) const override;
   const Coefficients& coefficients() const { return c_; }
 
  private:

@@ -159,6 +159,17 @@ VolumetricResponse UncoupledMaterial::volumetric(double J) const {
   return u;
 }
 
+void UncoupledMaterial::isochoric_first_derivatives(int n, const double* I1_bar,
+                                                    const double* I2_bar, double* energy,
+                                                    double* d1, double* d2) const {
+  for (int p = 0; p < n; ++p) {
+    const InvariantDerivatives w = isochoric_derivatives(I1_bar[p], I2_bar[p]);
+    energy[p] = w.energy;
+    d1[p] = w.d1;
+    d2[p] = w.d2;
+  }
+}
+
 PointResponse UncoupledMaterial::isochoric_response(const Mat3& F, bool with_tangent) const {
   const Kinematics k(F);
   if (!(k.J > 0.0)) return inverted_response();

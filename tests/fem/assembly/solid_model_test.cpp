@@ -5,7 +5,9 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -14,6 +16,7 @@
 #include "fem/material/material_factory.hpp"
 #include "fem/mesh/box_generator.hpp"
 #include "support/finite_difference.hpp"
+#include "support/reference_hex8_element.hpp"
 
 namespace tongue::fem {
 namespace {
@@ -23,10 +26,10 @@ using testing::central_difference_jacobian;
 constexpr double kLx = 0.03, kLy = 0.02, kLz = 0.02;  // m
 constexpr double kDensity = 1040.0;                   // kg/m^3
 
-// A 3 x 2 x 2 box of 10 mm elements with every interior node moved by up to ~1.5 mm, so that
-// no two elements share their geometry.
-Mesh distorted_box() {
-  return map_nodes(make_box(Vec3::Zero(), Vec3(kLx, kLy, kLz), 3, 2, 2), [](const Vec3& X) {
+// A box of nx x ny x nz elements (10 mm ones by default) with every interior node moved by up to
+// ~1.5 mm, so that no two elements share their geometry.
+Mesh distorted_box(int nx = 3, int ny = 2, int nz = 2) {
+  return map_nodes(make_box(Vec3::Zero(), Vec3(kLx, kLy, kLz), nx, ny, nz), [](const Vec3& X) {
     const Vec3 s(X.x() / kLx, X.y() / kLy, X.z() / kLz);  // in [0, 1]
     const double bump = std::sin(M_PI * s.x()) * std::sin(M_PI * s.y()) * std::sin(M_PI * s.z());
     return Vec3(X.x() + 1.5e-3 * bump + 0.5e-3 * s.y() * s.z(), X.y() - 1.0e-3 * bump * s.x(),
@@ -132,6 +135,83 @@ INSTANTIATE_TEST_SUITE_P(MooneyRivlin5, AssembledTangent,
                                                   ? "standard"
                                                   : "mean_dilatation");
                          });
+
+struct BatchCase {
+  std::string material;
+  Formulation formulation;
+  double dilation;  // uniform stretch applied on top of the deformation
+};
+
+class BatchedResidual : public ::testing::TestWithParam<BatchCase> {};
+
+// The residual path evaluates uncoupled materials 8 elements at a time (hex8_batch.hpp). Its
+// assembled force, energy and smallest det F are those of the straightforward reference element
+// summed element by element: on a 5 x 4 x 3 box (60 elements: 7 full batches and a partial one),
+// with element weights of which some are 0 (elements skipped), with and without the I2 terms
+// (mooney_rivlin5, neo_hookean), and dilated by 1.5 (det F above 2, where the kernel takes
+// std::cbrt instead of its own J^{-1/3}).
+TEST_P(BatchedResidual, EqualsTheReferenceElementSummedOverTheMesh) {
+  const BatchCase c = GetParam();
+  const Mesh mesh = distorted_box(5, 4, 3);
+  std::map<std::string, double> parameters;
+  if (c.material == "neo_hookean") parameters["shear_modulus"] = 3000.0;  // Pa
+  const std::shared_ptr<const Material> material = make_material(c.material, parameters);
+  const SolidModel model(mesh, material, c.formulation, kDensity, {});
+  const Vector u = displacement_field(
+      mesh, [&](const Vec3& X) { return Vec3(c.dilation * (X + deformation(X)) - X); });
+  std::vector<double> weights(mesh.num_elements());
+  for (int e = 0; e < mesh.num_elements(); ++e)
+    weights[e] = e % 4 == 1 ? 0.0 : 1.0 + 0.25 * (e % 3);
+
+  Vector f = Vector::Zero(model.num_dofs());
+  double energy = 0.0;
+  const AssemblyStatus status = model.add_weighted(u, weights, f, nullptr, &energy);
+  ASSERT_TRUE(status.ok);
+
+  Vector expected = Vector::Zero(model.num_dofs());
+  double expected_energy = 0.0, scale = 0.0;
+  double expected_min_J = std::numeric_limits<double>::infinity();
+  for (int e = 0; e < mesh.num_elements(); ++e) {
+    if (weights[e] == 0.0) continue;
+    hex8::ElementCoords X, x;
+    for (int a = 0; a < 8; ++a) {
+      const int n = mesh.elements[e][a];
+      X.row(a) = mesh.nodes[n].transpose();
+      x.row(a) = (mesh.nodes[n] + u.segment<3>(3 * n)).transpose();
+    }
+    ElementResponse r;
+    ASSERT_TRUE(testing::reference_evaluate_element(make_element_geometry(X), x, *material,
+                                                    c.formulation, false, r));
+    for (int a = 0; a < 8; ++a)
+      expected.segment<3>(3 * mesh.elements[e][a]) += weights[e] * r.force.segment<3>(3 * a);
+    expected_energy += weights[e] * r.energy;
+    scale += weights[e] * r.force.norm();
+    expected_min_J = std::min(expected_min_J, r.min_J);
+  }
+  if (c.dilation > 1.0) {
+    EXPECT_GT(status.min_J, 2.0);
+  }
+  // The same sums in another order, J^{-1/3} from Newton steps instead of std::cbrt, fused
+  // multiply-adds where the CPU has them: round-off, measured 3e-16 of the summed element force
+  // norms (energy 3e-16). 1e-13 leaves a wide margin and still fails for a J^{-1/3} off by 1e-12,
+  // let alone a wrong term.
+  EXPECT_LT((f - expected).norm(), 1e-13 * scale);
+  EXPECT_NEAR(energy, expected_energy, 1e-13 * std::abs(expected_energy));
+  EXPECT_NEAR(status.min_J, expected_min_J, 1e-14 * expected_min_J);
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    UncoupledMaterials, BatchedResidual,
+    ::testing::Values(BatchCase{"mooney_rivlin5", Formulation::mean_dilatation, 1.0},
+                      BatchCase{"mooney_rivlin5", Formulation::standard, 1.0},
+                      BatchCase{"mooney_rivlin5", Formulation::mean_dilatation, 1.5},
+                      BatchCase{"neo_hookean", Formulation::mean_dilatation, 1.0},
+                      BatchCase{"neo_hookean", Formulation::standard, 1.5}),
+    [](const auto& info) {
+      return info.param.material +
+             (info.param.formulation == Formulation::standard ? "_standard" : "_mean_dilatation") +
+             (info.param.dilation > 1.0 ? "_dilated" : "");
+    });
 
 // The element loops on 2 threads evaluate elements in parallel but sum them in element order, so
 // force, tangent, energy and the reported smallest det F are the same bits as on 1 thread; with
