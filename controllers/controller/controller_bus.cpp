@@ -3,6 +3,9 @@
 #include <cerrno>
 #include <chrono>
 #include <stdexcept>
+#include <utility>
+
+#include "bus/rejection_notice.hpp"
 
 namespace tongue::controller {
 
@@ -12,12 +15,17 @@ std::int64_t wall_utime() {
       .count();
 }
 
-ControllerBus::ControllerBus(const std::string& url, const bus::Channels& channels)
-    : url_(url), channels_(channels), lcm_(url) {
+ControllerBus::ControllerBus(const std::string& url, const bus::Channels& channels,
+                             std::string sender)
+    : url_(url), channels_(channels), sender_(std::move(sender)), lcm_(url) {
   if (!lcm_.good()) throw std::runtime_error("cannot open the LCM bus at '" + url + "'");
   lcm::Subscription* state = lcm_.subscribe(channels_.state, &ControllerBus::on_state, this);
   lcm::Subscription* model = lcm_.subscribe(channels_.model, &ControllerBus::on_model, this);
-  for (lcm::Subscription* s : {state, model}) {
+  // Raw bytes: a notice is decoded by the bounds-checked decode_rejection, any sender can
+  // publish on the channel.
+  lcm::Subscription* rejection =
+      lcm_.subscribe(channels_.rejection, &ControllerBus::on_rejection, this);
+  for (lcm::Subscription* s : {state, model, rejection}) {
     if (s == nullptr) throw std::runtime_error("cannot subscribe on '" + url + "'");
     subscriptions_.push_back(s);
   }
@@ -42,12 +50,22 @@ bool ControllerBus::poll(int timeout_ms) {
 }
 
 void ControllerBus::send_activation(std::int64_t step, const MuscleLevels& levels) {
-  tongue_lcm::lcmt_tongue_activation msg;
+  Activation msg;
   msg.utime = wall_utime();
   msg.step = step;
   msg.num_muscles = static_cast<std::int32_t>(levels.names.size());
   msg.names = levels.names;
   msg.levels = levels.levels;
+  msg.sender = sender_;
+  publish(msg);
+  last_activation_ = std::move(msg);
+}
+
+void ControllerBus::resend_activation() {
+  if (last_activation_) publish(*last_activation_);
+}
+
+void ControllerBus::publish(const Activation& msg) {
   if (lcm_.publish(channels_.activation, &msg) != 0)
     throw std::runtime_error("cannot publish on " + channels_.activation);
 }
@@ -64,6 +82,16 @@ void ControllerBus::on_state(const lcm::ReceiveBuffer*, const std::string&, cons
 
 void ControllerBus::on_model(const lcm::ReceiveBuffer*, const std::string&, const Model* msg) {
   models_.push_back(*msg);
+}
+
+void ControllerBus::on_rejection(const lcm::ReceiveBuffer* rbuf, const std::string&) {
+  Rejection notice;
+  std::string reason;
+  if (bus::decode_rejection(rbuf->data, static_cast<int>(rbuf->data_size), notice, reason)) {
+    rejections_.push_back(std::move(notice));
+  } else {
+    ++bad_rejections_;
+  }
 }
 
 }  // namespace tongue::controller

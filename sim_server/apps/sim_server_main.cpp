@@ -1,11 +1,13 @@
 // sim_server SCENE.yaml [--mode lockstep|fast|realtime] [--lcm-url URL] [--prefix TONGUE_]
 //            [--output FILE] [--timeout-ms N] [--silence-s S] [--on-silence hold|stop|decay]
 //            [--max-steps N] [--nodes all|surface|midsagittal|landmarks] [--publish-every K]
-//            [--controllers N]
+//            [--controllers N] [--repeat-ms MS] [--repeats N]
 //
 // Runs a dynamic scene with muscles on the LCM bus (server/server_loop.hpp): publishes the model
 // and the state of step 0, then advances under activation messages (lock-step: one step per
-// activation tagged with the next step, or per N of them merged with --controllers N; fast:
+// activation tagged with the next step, or per N of them merged with --controllers N, the state
+// published again while they are late (--repeat-ms, --repeats) so that a lost datagram is
+// recovered; fast:
 // free-running with the latest activation; realtime: as fast, paced to the wall clock, overruns
 // counted), logging every step to the run file when one is given (--output or the scene's
 // output.file).

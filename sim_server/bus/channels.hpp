@@ -1,7 +1,8 @@
 #pragma once
 // LCM channel names of one tongue server. Every channel is UPPER_SNAKE under a configurable
 // prefix, so several servers share one bus: prefix "TONGUE_" gives TONGUE_ACTIVATION,
-// TONGUE_STATE, TONGUE_MODEL and TONGUE_COMMAND; prefix "TONGUE2_" a second server's.
+// TONGUE_STATE, TONGUE_MODEL, TONGUE_COMMAND and TONGUE_REJECTION; prefix "TONGUE2_" a second
+// server's.
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -38,6 +39,7 @@ struct Channels {
   std::string state;       // lcmt_tongue_state, server -> everyone, once per published step
   std::string model;       // lcmt_tongue_model, server -> everyone, at start and on "describe"
   std::string command;     // lcmt_tongue_command, anyone -> server
+  std::string rejection;   // lcmt_tongue_rejection, server -> everyone, per rejected activation
 
   // Throws std::invalid_argument naming the prefix when it has a character outside [A-Z0-9_].
   explicit Channels(std::string_view prefix = kDefaultChannelPrefix) {
@@ -50,6 +52,7 @@ struct Channels {
     state = p + "STATE";
     model = p + "MODEL";
     command = p + "COMMAND";
+    rejection = p + "REJECTION";
   }
 };
 

@@ -47,6 +47,11 @@ void LcmServerBus::publish_state(const tongue_lcm::lcmt_tongue_state& msg) {
     throw std::runtime_error("cannot publish on " + channels_.state);
 }
 
+void LcmServerBus::publish_rejection(const tongue_lcm::lcmt_tongue_rejection& msg) {
+  if (lcm_.publish(channels_.rejection, &msg) != 0)
+    throw std::runtime_error("cannot publish on " + channels_.rejection);
+}
+
 std::vector<IncomingMessage> LcmServerBus::receive(int timeout_ms) {
   if (queue_.empty()) {
     // Waits for the first message, then takes whatever else is already there without waiting.

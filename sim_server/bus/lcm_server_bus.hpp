@@ -22,6 +22,7 @@ class LcmServerBus final : public ServerBus {
 
   void publish_model(const tongue_lcm::lcmt_tongue_model& msg) override;
   void publish_state(const tongue_lcm::lcmt_tongue_state& msg) override;
+  void publish_rejection(const tongue_lcm::lcmt_tongue_rejection& msg) override;
   std::vector<IncomingMessage> receive(int timeout_ms) override;
 
  private:

@@ -27,6 +27,10 @@ class FakeServerBus final : public bus::ServerBus {
     published.push_back('s');
     if (on_state) on_state(msg);
   }
+  void publish_rejection(const tongue_lcm::lcmt_tongue_rejection& msg) override {
+    rejections.push_back(msg);
+    published.push_back('r');
+  }
   // Everything queued, at once (as LCM hands over a burst); with nothing queued it waits the
   // whole timeout, as a quiet bus does.
   std::vector<bus::IncomingMessage> receive(int timeout_ms) override {
@@ -68,7 +72,8 @@ class FakeServerBus final : public bus::ServerBus {
   std::deque<bus::IncomingMessage> incoming;
   std::vector<tongue_lcm::lcmt_tongue_model> models;
   std::vector<tongue_lcm::lcmt_tongue_state> states;
-  std::string published;  // 'm' model, 's' state, in the order published
+  std::vector<tongue_lcm::lcmt_tongue_rejection> rejections;
+  std::string published;  // 'm' model, 's' state, 'r' rejection, in the order published
   int receives = 0;
   // Called on every state published, e.g. a controller that answers it.
   std::function<void(const tongue_lcm::lcmt_tongue_state&)> on_state;
