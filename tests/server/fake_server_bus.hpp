@@ -45,14 +45,17 @@ class FakeServerBus final : public bus::ServerBus {
   void send_raw(Channel channel, std::vector<std::uint8_t> bytes) {
     incoming.push_back({channel, std::move(bytes)});
   }
+  // sender "" names none (every message then counts as it comes).
   void send_activation(std::int64_t step, const std::vector<std::string>& names,
-                       const std::vector<double>& levels) {
+                       const std::vector<double>& levels, const std::string& sender = "",
+                       std::int64_t utime = 0) {
     tongue_lcm::lcmt_tongue_activation msg;
-    msg.utime = 0;
+    msg.utime = utime;
     msg.step = step;
     msg.num_muscles = static_cast<std::int32_t>(names.size());
     msg.names = names;
     msg.levels = levels;
+    msg.sender = sender;
     send_raw(Channel::activation, encode(msg));
   }
   void send_command(const std::string& command) {
