@@ -35,9 +35,9 @@ void print_usage(std::FILE* to) {
       "  --controllers   lock-step: step k+1 once N activations tagged k+1 have arrived, each\n"
       "                  naming its own muscles, merged (default 1)\n"
       "  --repeat-ms     lock-step: publish the state again when the next activations are\n"
-      "                  this late, ms, then at twice the interval each time (default 50; 0: "
-      "never)\n"
-      "  --repeats       lock-step: at most this many repeats of one state (default 6)\n",
+      "                  this late, ms, then at twice the interval each time, at most\n"
+      "                  --timeout-ms apart (default 50; 0: never)\n"
+      "  --repeats       lock-step: at most this many repeats of one state (default 10)\n",
       default_url.c_str());
 }
 

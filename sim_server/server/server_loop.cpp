@@ -70,7 +70,8 @@ ServerLoop::ServerLoop(const scene::Scene& scene, scene::BuiltScene built, bus::
       options_(std::move(options)),
       stop_requested_(std::move(stop_requested)),
       overrun_reports_(kReportInterval),
-      repeater_(options_.mode == Mode::lockstep ? options_.repeat_ms : 0, options_.repeats),
+      repeater_(options_.mode == Mode::lockstep ? options_.repeat_ms : 0, options_.repeats,
+                std::max(options_.repeat_ms, options_.timeout_ms)),
       input_(options_.mode, options_.controllers, muscle_names(run_)) {
   check_options(options_);
   node_indices_ = select_nodes(run_.built().solid->mesh(), options_.nodes, scene.source);

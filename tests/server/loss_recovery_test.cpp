@@ -15,8 +15,8 @@ namespace {
 // Times compared in s after sums of doubles: a nanosecond is far below any interval used.
 constexpr double kTimeTolerance = 1e-9;
 
-TEST(StateRepeater, RepeatsAfterDoublingIntervalsAtMostMaxTimes) {
-  StateRepeater repeater(50, 3);
+TEST(StateRepeater, RepeatsAfterDoublingIntervalsUpToTheLongestAtMostMaxTimes) {
+  StateRepeater repeater(50, 4, 150);
   repeater.restart(10.0);
   EXPECT_FALSE(repeater.due(10.049));
   std::vector<double> times;
@@ -27,28 +27,30 @@ TEST(StateRepeater, RepeatsAfterDoublingIntervalsAtMostMaxTimes) {
     EXPECT_FALSE(repeater.due(now));  // once per repeat
     times.push_back(now);
   }
-  ASSERT_EQ(times.size(), 3u);
+  ASSERT_EQ(times.size(), 4u);
   EXPECT_NEAR(times[0], 10.05, kTimeTolerance);
   EXPECT_NEAR(times[1], 10.15, kTimeTolerance);
-  EXPECT_NEAR(times[2], 10.35, kTimeTolerance);
+  EXPECT_NEAR(times[2], 10.30, kTimeTolerance);  // 200 ms capped at the longest, 150
+  EXPECT_NEAR(times[3], 10.45, kTimeTolerance);
   EXPECT_FALSE(repeater.due(100.0));
-  EXPECT_EQ(repeater.total(), 3);
+  EXPECT_EQ(repeater.total(), 4);
 
   repeater.restart(20.0);  // a new state: its own repeats
   EXPECT_NEAR(repeater.next().value_or(0.0), 20.05, kTimeTolerance);
   EXPECT_TRUE(repeater.due(20.05));
-  EXPECT_EQ(repeater.total(), 4);
+  EXPECT_EQ(repeater.total(), 5);
 }
 
 TEST(StateRepeater, ZeroMillisecondsOrRepeatsMeansNever) {
   for (const auto& [first_ms, repeats] : {std::pair{0, 6}, std::pair{50, 0}}) {
-    StateRepeater repeater(first_ms, repeats);
+    StateRepeater repeater(first_ms, repeats, 1000);
     repeater.restart(0.0);
     EXPECT_EQ(repeater.next(), std::nullopt);
     EXPECT_FALSE(repeater.due(1e9));
   }
-  EXPECT_THROW(StateRepeater(-1, 6), std::invalid_argument);
-  EXPECT_THROW(StateRepeater(50, -1), std::invalid_argument);
+  EXPECT_THROW(StateRepeater(-1, 6, 1000), std::invalid_argument);
+  EXPECT_THROW(StateRepeater(50, -1, 1000), std::invalid_argument);
+  EXPECT_THROW(StateRepeater(50, 6, 40), std::invalid_argument);
 }
 
 TEST(RoundSenders, TellsRepeatsFromChangedMessagesPerSender) {

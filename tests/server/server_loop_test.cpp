@@ -176,8 +176,7 @@ TEST_F(ServerLoopTest, LostStatesAndRepeatedAnswersGiveTheLosslessRun) {
     for (int i = 0; i < copies; ++i) {
       // The same bytes each time for a step, as a controller repeats its message.
       bus_.send_activation(step, {"flexor"}, {0.1 * static_cast<double>(step)}, "a:1", step);
-      bus_.send_activation(step, {"extensor"}, {0.05 * static_cast<double>(step % 3)}, "b:2",
-                           step);
+      bus_.send_activation(step, {"extensor"}, {0.05 * static_cast<double>(step % 3)}, "b:2", step);
     }
   };
   bus_.on_state = [&answer](const lcmt_tongue_state& s) { answer(s.step + 1, 1); };
