@@ -342,8 +342,9 @@ std::string write_run_figures(std::ostream& s, const Run& r) {
 void write_bus_figures(std::ostream& s, const Run& r) {
   const bus::Channels& channels = r.plan.channels;
   if (const auto b = read_bus_figures(r.plan.bus_log, channels.state, channels.activation)) {
-    s << "LCM log bus.lcmlog: " << b->states << " states, " << b->activations
-      << " activations (replay: lcm-logplayer --lcm-url='" << r.plan.url << "' bus.lcmlog)\n";
+    s << "LCM log bus.lcmlog: " << b->states << " states, " << b->activations << " activations";
+    if (b->repeated_activations > 0) s << " and " << b->repeated_activations << " repeats of them";
+    s << " (replay: lcm-logplayer --lcm-url='" << r.plan.url << "' bus.lcmlog)\n";
   } else {
     s << "LCM log bus.lcmlog: cannot be read\n";
   }
