@@ -51,6 +51,12 @@ ActivationCheck check_activation(const tongue_lcm::lcmt_tongue_activation& msg,
     return reject("sender is " + std::to_string(msg.sender.size()) + " bytes long, more than " +
                   std::to_string(kMaxSenderBytes));
   }
+  for (const char c : msg.sender) {
+    // Printable ASCII only: the sender is repeated in logs and notices as it is.
+    if (c < 0x20 || c > 0x7e)
+      return reject("sender has the byte " + std::to_string(static_cast<unsigned char>(c)) +
+                    ", outside printable ASCII");
+  }
 
   // Where each model muscle was first named in the message, or -1.
   std::vector<int> named_at(muscle_names.size(), -1);
