@@ -87,11 +87,8 @@ void ControllerBus::on_model(const lcm::ReceiveBuffer*, const std::string&, cons
 void ControllerBus::on_rejection(const lcm::ReceiveBuffer* rbuf, const std::string&) {
   Rejection notice;
   std::string reason;
-  if (bus::decode_rejection(rbuf->data, static_cast<int>(rbuf->data_size), notice, reason)) {
+  if (bus::decode_rejection(rbuf->data, static_cast<int>(rbuf->data_size), notice, reason))
     rejections_.push_back(std::move(notice));
-  } else {
-    ++bad_rejections_;
-  }
 }
 
 }  // namespace tongue::controller

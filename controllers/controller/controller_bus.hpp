@@ -43,9 +43,9 @@ class ControllerBus {
 
   std::deque<State>& states() { return states_; }
   std::deque<Model>& models() { return models_; }
-  // The rejection notices received (for any sender), and the count of undecodable ones.
+  // The rejection notices received, for any sender (undecodable bytes on the channel are
+  // dropped: a notice comes from the server or from a process forging one).
   std::deque<Rejection>& rejections() { return rejections_; }
-  std::int64_t bad_rejections() const { return bad_rejections_; }
 
   // Throws std::runtime_error naming the channel when LCM cannot publish.
   void send_activation(std::int64_t step, const MuscleLevels& levels);
@@ -72,7 +72,6 @@ class ControllerBus {
   std::deque<State> states_;
   std::deque<Model> models_;
   std::deque<Rejection> rejections_;
-  std::int64_t bad_rejections_ = 0;
   std::optional<Activation> last_activation_;
 };
 
