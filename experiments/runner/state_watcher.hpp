@@ -20,7 +20,13 @@ class StateWatcher {
   StateWatcher(const StateWatcher&) = delete;
   StateWatcher& operator=(const StateWatcher&) = delete;
 
-  void poll(int timeout_ms) { lcm_.handleTimeout(timeout_ms); }
+  // Waits at most timeout_ms for a state, then takes every state already there: the runner
+  // judges a controller that has ended by the last state, which must not wait in the queue
+  // behind others (repeated states, a describe's answer).
+  void poll(int timeout_ms) {
+    int handled = lcm_.handleTimeout(timeout_ms);
+    while (handled > 0) handled = lcm_.handleTimeout(0);
+  }
   std::optional<std::int64_t> last_step() const { return last_step_; }
   // Steps per wall second between the first and the last state received (0: too few).
   double steps_per_second() const;
