@@ -7,8 +7,12 @@
 #include <optional>
 #include <stdexcept>
 
+#include <unistd.h>
+
+#include "bus/rejection_notice.hpp"
 #include "common/interrupt.hpp"
 #include "common/number_text.hpp"
+#include "common/untrusted_text.hpp"
 
 namespace tongue::controller {
 namespace {
@@ -31,6 +35,16 @@ std::string seconds_text(double s) {
   return common::number_text(s) + " s";
 }
 
+// The name the activations carry: the program and its process id, unique on the host (the
+// default bus never leaves it).
+std::string sender_name(const std::string& program) {
+  return program + ":" + std::to_string(static_cast<long long>(getpid()));
+}
+
+// Characters of a notice's reason shown (a sentence naming a muscle and a step); its other
+// strings are names, cut at common::untrusted_text's default.
+constexpr std::size_t kReasonShown = 300;
+
 class Loop {
  public:
   Loop(std::string program, const CommonOptions& options, Controller& controller,
@@ -39,7 +53,7 @@ class Loop {
         options_(options),
         controller_(controller),
         outcome_(outcome),
-        bus_(options.lcm_url, bus::Channels(options.prefix), program_) {}
+        bus_(options.lcm_url, bus::Channels(options.prefix), program_, sender_name(program_)) {}
 
   void run() {
     const double start = now_seconds();
@@ -114,6 +128,7 @@ class Loop {
       if (interrupted()) return;
       check_models();
       if (!bus_.states().empty() && !take_states()) return;
+      if (!bus_.rejections().empty() && !take_rejections()) return;
       const double now = now_seconds();
       if (now > state_deadline_) {
         const LoopCounts& c = outcome_.counts;
@@ -140,14 +155,53 @@ class Loop {
       end(kExitOk, "reached step " + std::to_string(*last_step_) + last_step_reason_);
       return false;
     }
-    // Each step is answered once: a repeated state (e.g. "paused") would make a stale activation.
-    if (answered_step_ && *answered_step_ == k && !reset_since_answer_) return true;
+    // A step is computed once. The state of a step already answered again (published again
+    // because the answer or the state was lost, or "paused", or another's describe) is answered,
+    // in lock-step, with the very message sent for it: the server takes it once.
+    if (answered_step_ && *answered_step_ == k && !reset_since_answer_) {
+      if (options_.mode == LoopMode::lockstep) {
+        bus_.resend_activation();
+        ++outcome_.counts.activations_resent;
+      }
+      return true;
+    }
     const MuscleLevels levels = controller_.command(k + 1);
     bus_.send_activation(options_.mode == LoopMode::lockstep ? k + 1 : -1, levels);
     ++outcome_.counts.activations_sent;
     answered_step_ = k;
     reset_since_answer_ = false;
     return true;
+  }
+
+  // Rejection notices: one about the last activation sent ends the loop (the server will not
+  // take it: the controller's muscles or levels are wrong for this server, or another controller
+  // made the step); the first about another sender is shown, for the log. False when the loop
+  // ends.
+  bool take_rejections() {
+    std::deque<Rejection> notices;
+    notices.swap(bus_.rejections());
+    const std::optional<Activation>& sent = bus_.last_activation();
+    for (const Rejection& n : notices) {
+      if (sent && bus::is_about(n, *sent))
+        return end(kExitRejected, "the server rejected its activation for step " +
+                                      std::to_string(n.activation_step) + " (" + sent->sender +
+                                      "): " + common::untrusted_text(n.kind) + ": " +
+                                      common::untrusted_text(n.reason, kReasonShown));
+      if (outcome_.counts.others_rejected++ == 0)
+        std::fprintf(stderr, "%s: the server rejected an activation of %s for step %lld: %s: %s\n",
+                     program_.c_str(), common::quoted_untrusted(n.sender).c_str(),
+                     static_cast<long long>(n.activation_step),
+                     common::untrusted_text(n.kind).c_str(),
+                     common::untrusted_text(n.reason, kReasonShown).c_str());
+    }
+    return true;
+  }
+
+  // A state of the step last seen, converged, not after a reset: one already fed to the
+  // controller, published again (a repeat after a loss, "paused", an answer to "describe").
+  bool is_repeat(const State& s) const {
+    const LoopCounts& counts = outcome_.counts;
+    return counts.states_received > 0 && s.step == counts.last_step && s.converged;
   }
 
   bool observe(const State& s) {
@@ -157,6 +211,10 @@ class Loop {
       throw std::runtime_error("the state of step " + std::to_string(s.step) + " has " +
                                std::to_string(s.num_muscles) + " muscles, the model " +
                                std::to_string(model_.num_muscles));
+    if (is_repeat(s)) {
+      ++counts.repeated_states;
+      return true;
+    }
     if (counts.states_received > 0 && s.step < counts.last_step) {
       ++counts.resets;
       reset_since_answer_ = true;
@@ -212,6 +270,9 @@ std::string summary_line(const std::string& program, const LoopOutcome& outcome,
   s += ", " + std::to_string(c.activations_sent) + " activations sent (" +
        (options.mode == LoopMode::lockstep ? "lockstep" : "realtime") + "), " +
        std::to_string(c.commands_sent) + " commands sent";
+  if (c.repeated_states > 0 || c.activations_resent > 0)
+    s += ", " + std::to_string(c.repeated_states) + " repeated states (" +
+         std::to_string(c.activations_resent) + " activations sent again)";
   if (c.resets > 0) s += ", " + std::to_string(c.resets) + " server resets";
   if (c.messages_rejected > 0)
     s += ", " + std::to_string(c.messages_rejected) + " messages rejected";

@@ -8,16 +8,20 @@
 // 2. Wait for states on <prefix>STATE. A controller started after the server has missed the
 //    state a lock-step server waits on; the server's answer to "describe" (model, then current
 //    state) brings it.
-// 3. Every state goes to the controller (observe); the latest one, step k, is answered with the
-//    controller's levels for step k + 1, tagged k + 1 (lockstep) or -1 (realtime: the server
-//    holds it). A step is answered once (a repeated state, e.g. "paused", is not answered again)
-//    unless the server was reset meanwhile (the step went down).
+// 3. Every new state goes to the controller (observe); the latest one, step k, is answered with
+//    the controller's levels for step k + 1, tagged k + 1 (lockstep) or -1 (realtime: the server
+//    holds it). A step is computed once unless the server was reset meanwhile (the step went
+//    down): a repeated state (the same step again: the server publishes it again when the answer
+//    is late, after a loss; "paused"; an answer to "describe") is not observed again, and in
+//    lock-step it is answered with the very message sent for it, which the server takes once.
 // 4. The loop ends (exit 0) after the state of step N = min(--max-steps, the controller's last
 //    step), sending nothing for later steps; on SIGINT or SIGTERM (exit 130); with exit 4 when
 //    the model, the first state or any later state does not come within --timeout-s; with exit 2
-//    when the server publishes an unconverged step (it stops there); with exit 1 on a bus error or
-//    an input that does not fit the model (common/exit_code.hpp). A one-line summary goes to
-//    stderr in every case.
+//    when the server publishes an unconverged step (it stops there); with exit 5 when a rejection
+//    notice on <prefix>REJECTION names the last activation sent (the reason is printed; notices
+//    for other senders are counted, the first printed); with exit 1 on a bus error or an input
+//    that does not fit the model (common/exit_code.hpp). A one-line summary goes to stderr in
+//    every case.
 #include <cstdint>
 #include <string>
 
@@ -31,16 +35,20 @@ using common::kExitError;
 using common::kExitInterrupted;
 using common::kExitNotConverged;
 using common::kExitOk;
+using common::kExitRejected;
 using common::kExitTimeout;
 
 struct LoopCounts {
-  std::int64_t states_received = 0;
+  std::int64_t states_received = 0;  // new states (repeats not counted)
+  std::int64_t repeated_states = 0;  // states of the step last seen again
   std::int64_t activations_sent = 0;
-  std::int64_t commands_sent = 0;  // describe
-  std::int64_t first_step = -1;    // of the states received; -1: none
+  std::int64_t activations_resent = 0;  // the last one again, answering a repeated state
+  std::int64_t others_rejected = 0;     // rejection notices about other senders' activations
+  std::int64_t commands_sent = 0;       // describe
+  std::int64_t first_step = -1;         // of the states received; -1: none
   std::int64_t last_step = -1;
   int resets = 0;  // times the server's step went down
-  // States and models received and rejected (undecodable, or not fitting the model).
+  // States, models and notices received and rejected (undecodable, or not fitting the model).
   std::int64_t messages_rejected = 0;
 };
 
@@ -58,8 +66,8 @@ LoopOutcome run_control_loop(const std::string& program, const CommonOptions& op
                              Controller& controller);
 
 // The summary line: "<program>: <reason>; <n> states received (steps a-b), <m> activations sent
-// (lockstep), <c> commands sent[, <r> server resets][, <j> messages rejected][; <controller
-// summary>]".
+// (lockstep), <c> commands sent[, <r> repeated states (<s> activations sent again)][, <n> server
+// resets][, <j> messages rejected][; <controller summary>]".
 std::string summary_line(const std::string& program, const LoopOutcome& outcome,
                          const CommonOptions& options, const std::string& controller_summary);
 

@@ -3,9 +3,11 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <utility>
 
 #include "bus/published_decode.hpp"
 #include "bus/receive_limits.hpp"
+#include "bus/rejection_notice.hpp"
 #include "common/untrusted_text.hpp"
 
 namespace tongue::controller {
@@ -51,16 +53,18 @@ std::int64_t wall_utime() {
 }
 
 ControllerBus::ControllerBus(const std::string& url, const bus::Channels& channels,
-                             const std::string& program)
+                             const std::string& program, std::string sender)
     : url_(url),
       channels_(channels),
       program_(program),
+      sender_(std::move(sender)),
       parsed_url_(bus::parse_lcm_url(url)),
       lcm_(url),
-      receiver_(
-          lcm_, parsed_url_,
-          {{channels_.state, bus::kStateLimitBeforeModel}, {channels_.model, bus::kModelLimit}},
-          program),
+      receiver_(lcm_, parsed_url_,
+                {{channels_.state, bus::kStateLimitBeforeModel},
+                 {channels_.model, bus::kModelLimit},
+                 {channels_.rejection, bus::kRejectionLimit}},
+                program),
       reports_(1.0) {}
 
 bool ControllerBus::poll(int timeout_ms) {
@@ -83,6 +87,13 @@ void ControllerBus::take(const bus::ReceivedMessage& message) {
                                  " muscles are not the first model's " +
                                  std::to_string(model_->num_muscles));
     models_.push_back(std::move(model));
+    return;
+  }
+  if (message.channel == channels_.rejection) {
+    Rejection notice;
+    if (!bus::decode_rejection(message.bytes.data(), size, notice, reason))
+      return reject("undecodable rejection notice", reason);
+    rejections_.push_back(std::move(notice));
     return;
   }
   State state;
@@ -128,12 +139,22 @@ void ControllerBus::reject(const std::string& kind, const std::string& reason) {
 }
 
 void ControllerBus::send_activation(std::int64_t step, const MuscleLevels& levels) {
-  tongue_lcm::lcmt_tongue_activation msg;
+  Activation msg;
   msg.utime = wall_utime();
   msg.step = step;
   msg.num_muscles = static_cast<std::int32_t>(levels.names.size());
   msg.names = levels.names;
   msg.levels = levels.levels;
+  msg.sender = sender_;
+  publish(msg);
+  last_activation_ = std::move(msg);
+}
+
+void ControllerBus::resend_activation() {
+  if (last_activation_) publish(*last_activation_);
+}
+
+void ControllerBus::publish(const Activation& msg) {
   if (lcm_.publish(channels_.activation, &msg) != 0)
     throw std::runtime_error("cannot publish on " + channels_.activation);
 }

@@ -31,8 +31,14 @@ Start it before the server (it answers states from step 0 on; a server already w
 step it never saw is not answered). Several instances may drive one server started with
 --controllers N, each naming its own muscles.
 
+A state published again for a step already answered (the server repeats it when the answer is
+late, e.g. lost) is answered with the very message sent for it, which the server takes once.
+The activations name their sender, "step_controller:<pid>"; a rejection notice of the server
+(<prefix>REJECTION) about the last one sent ends the controller (exit 5) with its reason.
+
 Exit status: 0 state N reached; 1 a bad command line, a muscle not in the model, or LCM
-failed; 2 a step failed to converge; 4 the server fell silent.
+failed; 2 a step failed to converge; 4 the server fell silent; 5 the server rejected the
+activation.
 Run it with the generated bindings on the Lua path: the build's wrapper
 build/controllers/lua/step_controller does that.
 ]==]
@@ -47,20 +53,26 @@ local DEFAULT_URL = "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304"
 local EXIT_ERROR = 1
 local EXIT_NOT_CONVERGED = 2
 local EXIT_TIMEOUT = 4
+local EXIT_REJECTED = 5
 local SLICE_MS = 50             -- longest single wait on the bus
 local DESCRIBE_AFTER_MS = 250   -- ask for the model when it has not come by then
 
 -- The largest model and state taken [bytes], as sim_server/bus/receive_limits.hpp states them
--- (kModelLimit, kStateLimitBeforeModel).
+-- (kModelLimit, kStateLimitBeforeModel, kRejectionLimit).
 local MODEL_LIMIT = 64 * 1024 * 1024
 local STATE_LIMIT = 32 * 1024 * 1024
+local REJECTION_LIMIT = 8192
+-- Characters of a notice's reason shown (a sentence naming a muscle and a step).
+local REASON_SHOWN = 300
 
--- Received text as a report prints it: bytes outside printable ASCII as \xNN, cut at 64.
-local function printable(text)
-  local shown = text:sub(1, 64):gsub("[^\32-\126]", function(c)
+-- Received text as a report prints it: bytes outside printable ASCII as \xNN, cut at max_shown
+-- (default 64).
+local function printable(text, max_shown)
+  max_shown = max_shown or 64
+  local shown = text:sub(1, max_shown):gsub("[^\32-\126]", function(c)
     return string.format("\\x%02x", c:byte())
   end)
-  if #text > 64 then shown = shown .. "...(" .. #text .. " bytes)" end
+  if #text > max_shown then shown = shown .. "...(" .. #text .. " bytes)" end
   return shown
 end
 
@@ -184,7 +196,13 @@ local function main(args)
     state = options.prefix .. "STATE",
     model = options.prefix .. "MODEL",
     command = options.prefix .. "COMMAND",
+    rejection = options.prefix .. "REJECTION",
   }
+  -- The process id, from Linux's /proc (plain Lua has no getpid).
+  local stat = io.open("/proc/self/stat")
+  local sender = PROG .. ":" .. (stat and stat:read("*n") or "unknown")
+  if stat then stat:close() end
+  local sent  -- the last activation sent: {msg = ..., bytes = ...}
 
   local ok, bus = pcall(lcm.lcm.new, options.url)
   if not ok then fail(EXIT_ERROR, "cannot open the LCM bus at '" .. options.url .. "': " .. bus) end
@@ -211,6 +229,17 @@ local function main(args)
   bus:subscribe(channel.state, function(_, data)
     local state = take(tongue_lcm.lcmt_tongue_state.decode, data, STATE_LIMIT, "state")
     if state then table.insert(states, state) end
+  end)
+  bus:subscribe(channel.rejection, function(_, data)
+    local notice = take(tongue_lcm.lcmt_tongue_rejection.decode, data, REJECTION_LIMIT,
+                        "rejection notice")
+    if notice and sent and notice.sender == sender and notice.activation_step == sent.msg.step and
+       notice.activation_utime == sent.msg.utime then
+      fail(EXIT_REJECTED, string.format("the server rejected its activation for step %d (%s): " ..
+                                        "%s: %s", notice.activation_step, sender,
+                                        printable(notice.kind), printable(notice.reason,
+                                        REASON_SHOWN)))
+    end
   end)
   io.stderr:write(string.format("%s: listening on %s, channels %s*\n", PROG, options.url,
                                 options.prefix))
@@ -266,8 +295,10 @@ local function main(args)
                                              state.step + 1, printable(state.status)))
     end
     if options.max_steps and state.step >= options.max_steps then break end
-    -- "paused" states repeat a state already answered; "ok" ones are new (or a reset's step 0).
-    if state.status == "ok" then
+    if sent and sent.msg.step == state.step + 1 then
+      -- The step answered last, again ("paused", or repeated after a loss): the same message.
+      bus:publish(channel.activation, sent.bytes)
+    else
       local msg = tongue_lcm.lcmt_tongue_activation:new()
       msg.utime = os.time() * 1000000
       msg.step = state.step + 1
@@ -277,7 +308,9 @@ local function main(args)
       for i, name in ipairs(names) do
         msg.levels[i] = level_at(options.entries, name, state.time, dt)
       end
-      bus:publish(channel.activation, msg:encode())
+      msg.sender = sender
+      sent = {msg = msg, bytes = msg:encode()}
+      bus:publish(channel.activation, sent.bytes)
       answered = answered + 1
     end
   end

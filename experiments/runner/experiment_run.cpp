@@ -207,11 +207,16 @@ std::string start_in_order(Run& r) {
 std::string ended_controller_failure(Run& r) {
   // A controller may end once it has seen the last state (its --max-steps); before that, or
   // with an error, it has failed the run.
-  const bool last_state_out = r.watcher.last_step() && *r.watcher.last_step() >= r.plan.steps;
+  const auto last_state_out = [&r] {
+    return r.watcher.last_step() && *r.watcher.last_step() >= r.plan.steps;
+  };
   for (Member& c : r.members.controllers) {
     if (c.process->running()) continue;
     c.status = c.process->status();
-    if (!(last_state_out && succeeded(*c.status))) {
+    // A controller that ended well saw the last state, which reached the watcher at the same
+    // time; on a loaded machine the runner may look before reading it: a moment to do so.
+    for (int i = 0; i < 20 && succeeded(*c.status) && !last_state_out(); ++i) r.watcher.poll(50);
+    if (!(last_state_out() && succeeded(*c.status))) {
       return "controller '" + c.name + "' ended before the run was done (" +
              describe_status(*c.status) + ")";
     }
@@ -342,8 +347,9 @@ std::string write_run_figures(std::ostream& s, const Run& r) {
 void write_bus_figures(std::ostream& s, const Run& r) {
   const bus::Channels& channels = r.plan.channels;
   if (const auto b = read_bus_figures(r.plan.bus_log, channels.state, channels.activation)) {
-    s << "LCM log bus.lcmlog: " << b->states << " states, " << b->activations
-      << " activations (replay: lcm-logplayer --lcm-url='" << r.plan.url << "' bus.lcmlog)\n";
+    s << "LCM log bus.lcmlog: " << b->states << " states, " << b->activations << " activations";
+    if (b->repeated_activations > 0) s << " and " << b->repeated_activations << " repeats of them";
+    s << " (replay: lcm-logplayer --lcm-url='" << r.plan.url << "' bus.lcmlog)\n";
   } else {
     s << "LCM log bus.lcmlog: cannot be read\n";
   }

@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <memory>
+#include <set>
+#include <string>
 
 #include "run_file/run_file_reader.hpp"
 
@@ -67,6 +69,7 @@ std::optional<BusFigures> read_bus_figures(const std::filesystem::path& lcm_log,
       lcm_eventlog_create(lcm_log.c_str(), "r"), &lcm_eventlog_destroy);
   if (!log) return std::nullopt;
   BusFigures b;
+  std::set<std::string> activations;  // their bytes
   std::int64_t first = 0, last = 0;
   while (lcm_eventlog_event_t* event = lcm_eventlog_read_next_event(log.get())) {
     const std::string channel(event->channel, event->channellen);
@@ -74,7 +77,12 @@ std::optional<BusFigures> read_bus_figures(const std::filesystem::path& lcm_log,
       if (b.states++ == 0) first = event->timestamp;
       last = event->timestamp;
     } else if (channel == activation_channel) {
-      ++b.activations;
+      const auto* data = static_cast<const char*>(event->data);
+      if (activations.insert(std::string(data, data + event->datalen)).second) {
+        ++b.activations;
+      } else {
+        ++b.repeated_activations;
+      }
     }
     lcm_eventlog_free_event(event);
   }

@@ -30,9 +30,11 @@ struct RunFigures {
 RunFigures read_run_figures(const std::filesystem::path& run_file);
 
 struct BusFigures {
-  int states = 0;           // messages on the state channel
-  double state_span = 0.0;  // s between the first and the last of them (logger's clock)
-  int activations = 0;      // messages on the activation channel
+  int states = 0;                // messages on the state channel
+  double state_span = 0.0;       // s between the first and the last of them (logger's clock)
+  int activations = 0;           // distinct messages on the activation channel
+  int repeated_activations = 0;  // copies of one already counted: a controller's answers to a
+                                 // state published again (protocol.md, lost messages)
 };
 
 // Counts the messages of the two channels in an LCM log; nullopt when it cannot be read.

@@ -15,15 +15,23 @@ StateWatcher::StateWatcher(const std::string& url, const std::string& channel)
 
 void StateWatcher::poll(int timeout_ms) {
   std::vector<bus::ReceivedMessage> received;
-  receiver_.receive(timeout_ms, received);
-  for (const bus::ReceivedMessage& m : received) {
-    tongue_lcm::lcmt_tongue_state s;
-    std::string reason;
-    if (bus::decode_state(m.bytes.data(), static_cast<int>(m.bytes.size()), s, reason)) {
-      on_state(s);
-    } else {
-      reports_.report("state", "run_experiment: rejected undecodable state: " + reason);
+  // The first batch may wait; the ones after it take only what is already there, and a bounded
+  // number of them, so that a flood on the state channel cannot hold the runner in here.
+  constexpr int kMaxBatches = 32;
+  int wait_ms = timeout_ms;
+  for (int batch = 0;
+       batch < kMaxBatches && receiver_.receive(wait_ms, received) && !received.empty();
+       ++batch, wait_ms = 0) {
+    for (const bus::ReceivedMessage& m : received) {
+      tongue_lcm::lcmt_tongue_state s;
+      std::string reason;
+      if (bus::decode_state(m.bytes.data(), static_cast<int>(m.bytes.size()), s, reason)) {
+        on_state(s);
+      } else {
+        reports_.report("state", "run_experiment: rejected undecodable state: " + reason);
+      }
     }
+    received.clear();
   }
 }
 

@@ -24,6 +24,9 @@ class StateWatcher {
   StateWatcher(const StateWatcher&) = delete;
   StateWatcher& operator=(const StateWatcher&) = delete;
 
+  // Waits at most timeout_ms for a state, then takes the states already there: the runner
+  // judges a controller that has ended by the last state, which must not wait in the queue
+  // behind others (repeated states, a describe's answer).
   void poll(int timeout_ms);
   std::optional<std::int64_t> last_step() const { return last_step_; }
   // Steps per wall second between the first and the last state received (0: too few).

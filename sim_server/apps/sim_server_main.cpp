@@ -1,14 +1,15 @@
 // sim_server SCENE.yaml [--mode lockstep|fast|realtime] [--lcm-url URL] [--prefix TONGUE_]
 //            [--output FILE] [--timeout-ms N] [--silence-s S] [--on-silence hold|stop|decay]
 //            [--max-steps N] [--nodes all|surface|midsagittal|landmarks] [--publish-every K]
-//            [--controllers N]
+//            [--controllers N] [--repeat-ms MS] [--repeats N]
 //
 // Runs a dynamic scene with muscles on the LCM bus (server/server_loop.hpp): publishes the model
 // and the state of step 0, then advances under activation messages (lock-step: one step per
-// activation tagged with the next step, or per N of them merged with --controllers N; fast:
-// free-running with the latest activation; realtime: as fast, paced to the wall clock, overruns
-// counted), logging every step to the run file when one is given (--output or the scene's
-// output.file).
+// activation tagged with the next step, or per N of them merged with --controllers N, the state
+// published again while they are late (--repeat-ms, --repeats) so that a lost datagram is
+// recovered; fast: free-running with the latest activation; realtime: as fast, paced to the wall
+// clock, overruns counted), logging every step to the run file when one is given (--output or
+// the scene's output.file).
 //
 // Exit status (common/exit_code.hpp): 0 shutdown command or --max-steps reached; 1 bad command
 // line, scene error (e.g. a mesh without the sets --nodes needs), bus or I/O error; 2 a step failed

@@ -21,7 +21,7 @@ void print_usage(std::FILE* to) {
       "                  [--prefix TONGUE_] [--output FILE] [--timeout-ms N] [--silence-s S]\n"
       "                  [--on-silence hold|stop|decay] [--max-steps N]\n"
       "                  [--nodes all|surface|midsagittal|landmarks] [--publish-every K]\n"
-      "                  [--controllers N]\n"
+      "                  [--controllers N] [--repeat-ms MS] [--repeats N]\n"
       "  --mode          lockstep (default): step k+1 when the activation tagged k+1 arrives;\n"
       "                  fast: free-running, latest activation held;\n"
       "                  realtime: as fast, one step per dt of wall-clock time\n"
@@ -36,7 +36,11 @@ void print_usage(std::FILE* to) {
       "  --nodes         nodes the states carry: all (default), surface, midsagittal, landmarks\n"
       "  --publish-every fast and realtime: publish the state every K steps (default 1)\n"
       "  --controllers   lock-step: step k+1 once N activations tagged k+1 have arrived, each\n"
-      "                  naming its own muscles, merged (default 1)\n",
+      "                  naming its own muscles, merged (default 1)\n"
+      "  --repeat-ms     lock-step: publish the state again when the next activations are\n"
+      "                  this late, ms, then at twice the interval each time, at most\n"
+      "                  --timeout-ms apart (default 50; 0: never)\n"
+      "  --repeats       lock-step: at most this many repeats of one state (default 10)\n",
       default_url.c_str());
 }
 
@@ -128,6 +132,18 @@ bool read_publish_every(const std::string& value, Options& o) {
   return n.has_value();
 }
 
+bool read_repeat_ms(const std::string& value, Options& o) {
+  const auto n = integer_in(value, 0, 60000, "--repeat-ms must be an integer in [0, 60000] ms");
+  if (n) o.server.repeat_ms = static_cast<int>(*n);
+  return n.has_value();
+}
+
+bool read_repeats(const std::string& value, Options& o) {
+  const auto n = integer_in(value, 0, 20, "--repeats must be an integer in [0, 20]");
+  if (n) o.server.repeats = static_cast<int>(*n);
+  return n.has_value();
+}
+
 bool read_controllers(const std::string& value, Options& o) {
   const auto n = integer_in(value, 1, 1000000, "--controllers must be an integer in [1, 1000000]");
   if (n) o.server.controllers = static_cast<int>(*n);
@@ -184,6 +200,8 @@ constexpr Option kOptions[] = {
     {"--nodes", true, read_nodes},
     {"--publish-every", true, read_publish_every},
     {"--controllers", true, read_controllers},
+    {"--repeat-ms", true, read_repeat_ms},
+    {"--repeats", true, read_repeats},
 };
 
 const Option* find_option(const std::string& name) {
@@ -229,6 +247,12 @@ bool check_together(const Options& o) {
     return fail(
         "--controllers applies to --mode lockstep only (fast and realtime hold the latest "
         "activation, whoever sends it)");
+  const server::ServerOptions defaults;
+  if (o.server.mode != Mode::lockstep &&
+      (o.server.repeat_ms != defaults.repeat_ms || o.server.repeats != defaults.repeats))
+    return fail(
+        "--repeat-ms and --repeats apply to --mode lockstep only (the other modes publish every "
+        "step without waiting)");
   if (o.server.mode != Mode::realtime && o.server.on_silence == server::OnSilence::decay)
     return fail("--on-silence decay needs --mode realtime");
   return true;

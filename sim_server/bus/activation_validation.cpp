@@ -44,6 +44,16 @@ ActivationCheck check_activation(const tongue_lcm::lcmt_tongue_activation& msg,
   if (msg.step < -1) {
     return reject("step = " + std::to_string(msg.step) + " is not a step (>= 0) or -1 (apply now)");
   }
+  if (msg.sender.size() > kMaxSenderBytes) {
+    return reject("sender is " + std::to_string(msg.sender.size()) + " bytes long, more than " +
+                  std::to_string(kMaxSenderBytes));
+  }
+  for (const char c : msg.sender) {
+    // Printable ASCII only: the sender is repeated in logs and notices as it is.
+    if (c < 0x20 || c > 0x7e)
+      return reject("sender has the byte " + std::to_string(static_cast<unsigned char>(c)) +
+                    ", outside printable ASCII");
+  }
 
   // Where each model muscle was first named in the message, or -1.
   std::vector<int> named_at(muscle_names.size(), -1);
@@ -77,7 +87,7 @@ ActivationCheck check_activation(const tongue_lcm::lcmt_tongue_activation& msg,
 bool decode_activation(const void* data, int size, tongue_lcm::lcmt_tongue_activation& out,
                        std::string& reason) {
   // Layout (LCM, big-endian): fingerprint int64, utime int64, step int64, num_muscles int32,
-  // num_muscles strings, then num_muscles doubles.
+  // num_muscles strings, num_muscles doubles, then the sender string.
   constexpr int kHeader = 8 + 8 + 8 + 4;
   constexpr int kMinStringBytes = 4 + 1;
   constexpr int kDoubleBytes = 8;
@@ -125,8 +135,13 @@ bool decode_activation(const void* data, int size, tongue_lcm::lcmt_tongue_activ
              std::to_string(in.left()) + " left (truncated)";
     return false;
   }
-  if (in.left() > level_bytes) {
-    reason = what + std::to_string(in.left() - level_bytes) + " trailing bytes after the message";
+  in.skip(level_bytes);
+  if (!in.string("sender", reason)) {
+    reason = what + reason;
+    return false;
+  }
+  if (in.left() > 0) {
+    reason = what + std::to_string(in.left()) + " trailing bytes after the message";
     return false;
   }
   return checked_decode(data, size, out, what, reason);

@@ -29,9 +29,13 @@ struct ActivationCheck {
   void merge_into(Eigen::VectorXd& held) const;
 };
 
+// The longest sender name an activation may give: the server repeats it in rejection notices.
+inline constexpr std::size_t kMaxSenderBytes = 100;
+
 // Checks msg against the model's muscles. Rejects it when num_muscles is negative or differs from
-// the size of names or levels, step is below -1, a name is not in muscle_names or appears twice,
-// or a level is NaN, infinite or outside [0, 1].
+// the size of names or levels, step is below -1, the sender is longer than kMaxSenderBytes or has
+// a byte outside printable ASCII, a name is not in muscle_names or appears twice, or a level is
+// NaN, infinite or outside [0, 1].
 ActivationCheck check_activation(const tongue_lcm::lcmt_tongue_activation& msg,
                                  const std::vector<std::string>& muscle_names);
 

@@ -1,7 +1,8 @@
 #pragma once
 // LCM channel names of one tongue server. Every channel is UPPER_SNAKE under a configurable
 // prefix, so several servers share one bus: prefix "TONGUE_" gives TONGUE_ACTIVATION,
-// TONGUE_STATE, TONGUE_MODEL and TONGUE_COMMAND; prefix "TONGUE2_" a second server's.
+// TONGUE_STATE, TONGUE_MODEL, TONGUE_COMMAND and TONGUE_REJECTION; prefix "TONGUE2_" a second
+// server's.
 #include <cstddef>
 #include <stdexcept>
 #include <string>
@@ -55,6 +56,7 @@ struct Channels {
   std::string state;       // lcmt_tongue_state, server -> everyone, once per published step
   std::string model;       // lcmt_tongue_model, server -> everyone, at start and on "describe"
   std::string command;     // lcmt_tongue_command, anyone -> server
+  std::string rejection;   // lcmt_tongue_rejection, server -> everyone, per rejected activation
 
   // Throws std::invalid_argument naming the prefix when is_valid_channel_prefix is false.
   explicit Channels(std::string_view prefix = kDefaultChannelPrefix) {
@@ -67,6 +69,7 @@ struct Channels {
     state = p + "STATE";
     model = p + "MODEL";
     command = p + "COMMAND";
+    rejection = p + "REJECTION";
   }
 };
 

@@ -31,6 +31,11 @@ void LcmServerBus::publish_state(const tongue_lcm::lcmt_tongue_state& msg) {
   publish(channels_.state, msg);
 }
 
+void LcmServerBus::publish_rejection(const tongue_lcm::lcmt_tongue_rejection& msg) {
+  if (lcm_.publish(channels_.rejection, &msg) != 0)
+    throw std::runtime_error("cannot publish on " + channels_.rejection);
+}
+
 std::vector<IncomingMessage> LcmServerBus::receive(int timeout_ms) {
   std::vector<ReceivedMessage> received;
   // A signal (SIGINT, SIGTERM) cuts the wait short: the loop then looks at its stop flag.

@@ -31,6 +31,7 @@ class LcmServerBus final : public ServerBus {
 
   void publish_model(const tongue_lcm::lcmt_tongue_model& msg) override;
   void publish_state(const tongue_lcm::lcmt_tongue_state& msg) override;
+  void publish_rejection(const tongue_lcm::lcmt_tongue_rejection& msg) override;
   std::vector<IncomingMessage> receive(int timeout_ms) override;
 
   // What the receiver dropped so far (oversize, bad datagrams, bad fragments).

@@ -8,5 +8,6 @@
 #include <tongue_lcm/lcmt_tongue_activation.hpp>
 #include <tongue_lcm/lcmt_tongue_command.hpp>
 #include <tongue_lcm/lcmt_tongue_model.hpp>
+#include <tongue_lcm/lcmt_tongue_rejection.hpp>
 #include <tongue_lcm/lcmt_tongue_state.hpp>
 #pragma GCC diagnostic pop

@@ -2,11 +2,14 @@
 
 #include <algorithm>
 
+#include "bus/activation_validation.hpp"
+
 namespace tongue::bus {
 
 std::size_t activation_limit(const std::vector<std::string>& muscle_names) {
-  // Fingerprint, utime, step, num_muscles; per muscle a string (length, bytes, NUL) and a double.
-  std::size_t largest = 8 + 8 + 8 + 4;
+  // Fingerprint, utime, step, num_muscles; per muscle a string (length, bytes, NUL) and a double;
+  // the sender string.
+  std::size_t largest = 8 + 8 + 8 + 4 + 4 + kMaxSenderBytes + 1;
   for (const std::string& name : muscle_names) largest += 4 + name.size() + 1 + 8;
   return std::max(kLimitFactor * largest, kMinActivationLimit);
 }

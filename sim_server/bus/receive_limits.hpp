@@ -24,11 +24,15 @@ inline constexpr std::size_t kModelLimit = std::size_t{64} << 20;
 // States before the model is known [bytes]: 28 B per node sent; the refined tongue's is about
 // 190 kB. Once a model is known, state_limit(model) replaces it.
 inline constexpr std::size_t kStateLimitBeforeModel = std::size_t{32} << 20;
+// Rejection notices (lcmt_tongue_rejection): the fixed fields, a sender of at most
+// kMaxSenderBytes (the server sends none for a longer one), a kind and a one-line reason whose
+// quoted names are cut (common::untrusted_text): under 2 kB.
+inline constexpr std::size_t kRejectionLimit = 8192;
 // Room for the status string in a state's limit [bytes] (the server's status is a line of text).
 inline constexpr std::size_t kStatusAllowance = 65536;
 
 // The limit of activations to a model with these muscles: kLimitFactor times a message naming
-// all of them (at least kMinActivationLimit).
+// all of them with the longest sender (at least kMinActivationLimit).
 std::size_t activation_limit(const std::vector<std::string>& muscle_names);
 
 // The limit of states of model: kLimitFactor times a state carrying all its nodes and muscles,

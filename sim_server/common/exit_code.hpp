@@ -9,6 +9,7 @@ enum ExitCode : int {
   kExitNotConverged = 2,   // a step (or load increment) failed to converge, even after cuts
   kExitSilence = 3,        // stopped on silence: no activation (server) or no state in time
   kExitTimeout = 4,        // a controller's wait for the server's model or state timed out
+  kExitRejected = 5,       // the server rejected a controller's activation (a rejection notice)
   kExitInterrupted = 130,  // SIGINT or SIGTERM (the shell's 128 + SIGINT)
 };
 

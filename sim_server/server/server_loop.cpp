@@ -70,6 +70,8 @@ ServerLoop::ServerLoop(const scene::Scene& scene, scene::BuiltScene built, bus::
       options_(std::move(options)),
       stop_requested_(std::move(stop_requested)),
       overrun_reports_(kReportInterval),
+      repeater_(options_.mode == Mode::lockstep ? options_.repeat_ms : 0, options_.repeats,
+                std::max(options_.repeat_ms, options_.timeout_ms)),
       input_(options_.mode, options_.controllers, muscle_names(run_)) {
   check_options(options_);
   node_indices_ = select_nodes(run_.built().solid->mesh(), options_.nodes, scene.source);
@@ -92,10 +94,21 @@ ExitStatus ServerLoop::run() {
     std::fprintf(stderr, "sim_server: error: %s\n", e.what());
   }
   std::fprintf(stderr, "sim_server: %s\n", timing_.summary().c_str());
+  const std::int64_t repeated_states = repeater_.total(), repeated_activations = input_.repeats();
+  if (repeated_states > 0 || repeated_activations > 0)
+    std::fprintf(stderr,
+                 "sim_server: %lld states published again while activations were late, %lld "
+                 "activations repeated by their senders (taken once)\n",
+                 static_cast<long long>(repeated_states),
+                 static_cast<long long>(repeated_activations));
   if (log_) {
     try {
       log_->set_attribute("status", status_text(status));
       log_->set_attribute("resets", std::to_string(resets_));
+      if (options_.mode == Mode::lockstep) {
+        log_->set_attribute("repeated_states", std::to_string(repeated_states));
+        log_->set_attribute("repeated_activations", std::to_string(repeated_activations));
+      }
       for (const auto& [name, value] : timing_.attributes()) log_->set_attribute(name, value);
       log_->flush();
     } catch (const std::exception& e) {
@@ -125,6 +138,7 @@ ExitStatus ServerLoop::loop() {
   log_frame();
   publish_state("ok");
   deadline_ = steady_seconds() + options_.timeout_ms * 1e-3;
+  repeater_.restart(steady_seconds());
   anchor_clock();
   // One message per turn, so that a step a message makes due is taken before the next message
   // is judged (the step number it must carry moves on).
@@ -138,11 +152,13 @@ ExitStatus ServerLoop::loop() {
       input_.record(inbox_.front(), run_.step_count(), steady_seconds());
       inbox_.pop_front();
       timing_.add(StepTiming::Part::loop, turn);
+      publish_notices();
       if (const auto command = input_.take_command()) execute(*command);
       if (shutdown_ || !failure_.empty()) continue;
     }
     if (inbox_.empty()) {
       if (const auto end = watch_silence()) return *end;
+      repeat_state();
     }
     if (const fem::Vector* levels = due_levels()) {
       if (options_.mode == Mode::realtime) {
@@ -151,6 +167,7 @@ ExitStatus ServerLoop::loop() {
       }
       take_step(*levels);
       deadline_ = steady_seconds() + options_.timeout_ms * 1e-3;
+      repeater_.restart(steady_seconds());
     }
   }
 }
@@ -179,7 +196,8 @@ int ServerLoop::wait_ms() const {
     case Mode::lockstep:
       break;
   }
-  const double left_ms = (deadline_ - steady_seconds()) * 1e3;
+  const double until = std::min(deadline_, repeater_.next().value_or(deadline_));
+  const double left_ms = (until - steady_seconds()) * 1e3;
   return std::clamp(static_cast<int>(left_ms) + 1, 0, kPollSliceMs);
 }
 
@@ -232,6 +250,18 @@ std::optional<ExitStatus> ServerLoop::watch_silence() {
   return std::nullopt;
 }
 
+void ServerLoop::repeat_state() {
+  if (options_.mode != Mode::lockstep || paused_ || input_.round().complete()) return;
+  if (repeater_.due(steady_seconds())) publish_state("ok");
+}
+
+void ServerLoop::publish_notices() {
+  for (tongue_lcm::lcmt_tongue_rejection& notice : input_.take_notices()) {
+    notice.utime = wall_utime();
+    bus_.publish_rejection(notice);
+  }
+}
+
 void ServerLoop::anchor_clock() {
   anchor_time_ = steady_seconds();
   anchor_step_ = run_.step_count();
@@ -266,8 +296,12 @@ std::string ServerLoop::lockstep_wait_text() const {
                            std::to_string(options_.timeout_ms) + " ms";
   if (options_.controllers == 1) return "no activation " + rest;
   const ActivationRound& round = input_.round();
-  return std::to_string(round.received()) + " of " + std::to_string(round.expected()) +
-         " activations " + rest;
+  std::string text = std::to_string(round.received()) + " of " + std::to_string(round.expected()) +
+                     " activations " + rest;
+  if (input_.round_rejections() > 0)
+    text += " (" + std::to_string(input_.round_rejections()) +
+            " rejected, the last: " + input_.round_rejection() + ")";
+  return text;
 }
 
 bool ServerLoop::start() {
@@ -307,6 +341,7 @@ void ServerLoop::execute(bus::Command command) {
       break;
     case bus::Command::resume:
       if (paused_ && options_.mode == Mode::realtime) anchor_clock();
+      if (paused_) repeater_.restart(steady_seconds());
       paused_ = false;  // a complete lock-step round is now due
       break;
     case bus::Command::reset:
@@ -320,6 +355,7 @@ void ServerLoop::execute(bus::Command command) {
       std::fprintf(stderr, "sim_server: reset to step 0\n");
       log_frame();
       publish_state(paused_ ? "paused" : "ok");
+      repeater_.restart(steady_seconds());
       break;
   }
 }

@@ -7,7 +7,12 @@
 // for timeout_ms, it reports the silence on stderr and holds (keeps waiting) or stops. With
 // several controllers (ServerOptions::controllers = N), it advances once N accepted messages
 // tagged k + 1 have arrived, merged (ActivationRound: each names its own muscles; one naming a
-// muscle already set for k + 1 is rejected whole); the silence report says how many arrived.
+// muscle already set for k + 1 is rejected whole); the silence report says how many arrived,
+// and how many for k + 1 were rejected. Every rejected activation that could be decoded is also
+// answered by a rejection notice on the bus, for its sender. Over a lossy bus: while the
+// activations for k + 1 are late, the state of step k is published again (StateRepeater), and a
+// sender's unchanged repeat of a message already taken is ignored (RoundSenders), so that a lost
+// state or activation costs a delay and the run is the same as without the loss.
 // Fast mode: free-running, every step uses the latest accepted activation (zero-order hold; any
 // step number is accepted, -1 included).
 // Real-time mode: as fast mode, but paced to a steady clock: counting from the clock's anchor
@@ -22,8 +27,9 @@
 // again, then the current state). Rejections and overruns are reported on stderr at most once
 // per kind per second, with the count of those not shown.
 // The run file's root attributes: status ("completed", "interrupted", "stopped: <silence>",
-// "failed: <why>"), resets (how many), material_warning (the first loss of ellipticity), and
-// the steps' timing (StepTiming::attributes), also summed up in one line on stderr at the end.
+// "failed: <why>"), resets (how many), material_warning (the first loss of ellipticity), the
+// steps' timing (StepTiming::attributes), also summed up in one line on stderr at the end, and in
+// lock-step repeated_states and repeated_activations (how many of each the loss recovery made).
 //
 // How it is built: the loop takes the messages one at a time and hands each to ControlInput,
 // which only records what it means (an activation merged into the round or the hold, a command
@@ -50,6 +56,7 @@
 #include "server/control_input.hpp"
 #include "server/node_selection.hpp"
 #include "server/server_options.hpp"
+#include "server/state_repeater.hpp"
 #include "server/step_timing.hpp"
 
 namespace tongue::server {
@@ -78,7 +85,9 @@ class ServerLoop {
   int wait_ms() const;                        // how long the next receive may wait
   const fem::Vector* due_levels() const;      // the levels of a step due now, or null
   std::optional<ExitStatus> watch_silence();  // reports silence; common::kExitSilence: stop
-  void anchor_clock();             // real-time: the next step starts now, later ones dt apart
+  void repeat_state();     // lock-step: the state again when the next step's activations are late
+  void publish_notices();  // the rejection notices of the message just recorded
+  void anchor_clock();     // real-time: the next step starts now, later ones dt apart
   double step_start_time() const;  // real-time: steady-clock s at which the next step may start
   bool should_publish() const;     // fast and real-time: whether the current state is published
 
@@ -104,6 +113,7 @@ class ServerLoop {
   std::vector<int> node_indices_;  // nodes the states carry
   common::RateLimitedReporter overrun_reports_;
   StepTiming timing_;
+  StateRepeater repeater_;
 
   std::deque<bus::IncomingMessage> inbox_;  // received, not yet recorded
   ControlInput input_;                      // what the messages recorded so far ask for

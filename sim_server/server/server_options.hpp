@@ -19,6 +19,12 @@ struct ServerOptions {
   // Lock-step: accepted activation messages tagged k + 1 that make step k + 1 (one per
   // controller, each naming its own muscles). Other modes: 1.
   int controllers = 1;
+  // Lock-step: the state of step k is published again repeat_ms after it went out when the
+  // activations for k + 1 have not all come, then after twice that interval, four times, ...
+  // (at most timeout_ms apart), at most repeats times (StateRepeater); repeat_ms 0: never. The
+  // defaults: 10 repeats over 6.55 s (50, 100, 200, 400, 800 ms, then every 1 s).
+  int repeat_ms = 50;
+  int repeats = 10;
   OnSilence on_silence = OnSilence::hold;
   double silence_s = 0.5;  // real-time: silence before hold / decay / stop [s]
   Nodes nodes = Nodes::all;

@@ -88,6 +88,19 @@ TEST(CheckActivation, AcceptsTheBoundsZeroAndOne) {
   EXPECT_EQ(merged(check), vector({1.0, 0.2, 0.3, 0.0}));
 }
 
+// The sender is repeated in logs and rejection notices: short, printable ASCII.
+TEST(CheckActivation, RejectsALongOrUnprintableSender) {
+  auto msg = message({"SL"}, {0.5});
+  msg.sender = std::string(100, 'x');
+  EXPECT_TRUE(check_activation(msg, kMuscles).accepted);
+  msg.sender += 'x';
+  expect_rejected(msg, {"sender", "101 bytes", "more than 100"});
+  msg.sender = "ep_controller:1\nsim_server: shutdown at step 99";
+  expect_rejected(msg, {"sender", "byte 10", "printable ASCII"});
+  msg.sender = "caf\xc3\xa9";
+  expect_rejected(msg, {"sender", "byte 195"});
+}
+
 TEST(CheckActivation, RejectsNegativeNumMuscles) {
   auto msg = message({}, {});
   msg.num_muscles = -2;

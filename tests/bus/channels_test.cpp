@@ -21,6 +21,7 @@ TEST(Channels, DefaultPrefixIsTongue) {
   EXPECT_EQ(channels.state, "TONGUE_STATE");
   EXPECT_EQ(channels.model, "TONGUE_MODEL");
   EXPECT_EQ(channels.command, "TONGUE_COMMAND");
+  EXPECT_EQ(channels.rejection, "TONGUE_REJECTION");
 }
 
 TEST(Channels, PrefixSeparatesServers) {
@@ -29,6 +30,7 @@ TEST(Channels, PrefixSeparatesServers) {
   EXPECT_EQ(channels.state, "TONGUE2_STATE");
   EXPECT_EQ(channels.model, "TONGUE2_MODEL");
   EXPECT_EQ(channels.command, "TONGUE2_COMMAND");
+  EXPECT_EQ(channels.rejection, "TONGUE2_REJECTION");
 }
 
 TEST(Channels, EmptyPrefixIsAllowed) {

@@ -1,10 +1,10 @@
 // ep_controller under forged server messages on a real loopback bus, the test playing the server:
 // a forged state with a status string of length 0 (lcm-gen's decoder threw on it: exit 1),
-// truncations, absurd counts and lengths and random bytes on the state and model channels, a
-// model with other muscles, non-finite values, and raw datagrams in LCM's fragment format (the
-// pair that crashes liblcm 1.3.1, 256 MB claims). The controller must survive each, report the
-// rejections, and go on answering the real states. Built twice like server_fuzz_test.cpp
-// (udpm ports 7939-7940 quick, 7959-7960 soak).
+// truncations, absurd counts and lengths and random bytes on the state, model and rejection
+// channels, a model with other muscles, a notice about another sender's activation, non-finite
+// values, and raw datagrams in LCM's fragment format (the pair that crashes liblcm 1.3.1, 256 MB
+// claims). The controller must survive each, report the rejections, and go on answering the real
+// states. Built twice like server_fuzz_test.cpp (udpm ports 7939-7940 quick, 7959-7960 soak).
 #include <gtest/gtest.h>
 
 #include <signal.h>
@@ -49,6 +49,7 @@ using testing::Bytes;
 using tongue_lcm::lcmt_tongue_activation;
 using tongue_lcm::lcmt_tongue_command;
 using tongue_lcm::lcmt_tongue_model;
+using tongue_lcm::lcmt_tongue_rejection;
 using tongue_lcm::lcmt_tongue_state;
 
 constexpr int kScale = FUZZ_SCALE;
@@ -138,6 +139,27 @@ bool answers_a_new_state(FakeServer& server, std::size_t muscles) {
   });
 }
 
+// Rejection notices no controller here sent: first a whole one about another sender's
+// activation (shown once, not fatal), then one with a sender length of 0, its truncations,
+// absurd int32s, random bytes after the fingerprint, and one over the channel's 8 kB limit.
+std::vector<Bytes> forged_notices(std::mt19937& random) {
+  lcmt_tongue_rejection notice{};
+  notice.sender = "ep_controller:1";
+  notice.activation_step = 1;
+  notice.kind = "second activation";
+  notice.reason = "forged";
+  const Bytes whole = bus::testing::encoded(notice);
+  Bytes zero_sender = whole;
+  bus::testing::put_int32(zero_sender, 8 + 8 + 8, 0);  // after fingerprint, utime, step
+  std::vector<Bytes> notices{whole, zero_sender};
+  for (const auto& list : {testing::truncations(whole), testing::absurd_int32s(whole),
+                           testing::random_after_fingerprint(whole, random, 500 * kScale)})
+    notices.insert(notices.end(), list.begin(), list.end());
+  notice.reason = std::string(20000, 'r');
+  notices.push_back(bus::testing::encoded(notice));
+  return notices;
+}
+
 class ControllerFuzz : public testing::TempDirTest {};
 
 TEST_F(ControllerFuzz, EpControllerSurvivesForgedStatesAndModels) {
@@ -180,6 +202,8 @@ TEST_F(ControllerFuzz, EpControllerSurvivesForgedStatesAndModels) {
   for (const auto& list : {testing::truncations(model_bytes), testing::absurd_int32s(model_bytes),
                            testing::random_after_fingerprint(model_bytes, random, 500 * kScale)})
     models.insert(models.end(), list.begin(), list.end());
+  const std::vector<Bytes> notices = forged_notices(random);
+  for (const Bytes& b : notices) server.publish(server.channels().rejection, b);
   for (const Bytes& b : states) server.publish(server.channels().state, b);
   for (const Bytes& b : models) server.publish(server.channels().model, b);
   testing::DatagramSender sender(kPort);
@@ -190,9 +214,9 @@ TEST_F(ControllerFuzz, EpControllerSurvivesForgedStatesAndModels) {
       sender.send(d);
   }
   std::printf(
-      "forged at ep_controller: %zu states, %zu models, %d claims of 2^28 bytes, %d overflowing "
-      "fragment pairs sent\n",
-      states.size(), models.size(), claims, claims);
+      "forged at ep_controller: %zu notices, %zu states, %zu models, %d claims of 2^28 bytes, %d "
+      "overflowing fragment pairs sent\n",
+      notices.size(), states.size(), models.size(), claims, claims);
 
   // Still answering: the real state of step 1 gets the activation for step 2.
   ASSERT_TRUE(controller.wait_stderr("rejected undecodable state", kWaitMs))
@@ -208,11 +232,14 @@ TEST_F(ControllerFuzz, EpControllerSurvivesForgedStatesAndModels) {
   EXPECT_NE(err.find("messages rejected"), std::string::npos) << err;
   EXPECT_NE(err.find("dropped oversize message"), std::string::npos) << err;
   EXPECT_NE(err.find("rejected model"), std::string::npos) << err;
+  EXPECT_NE(err.find("rejected undecodable rejection notice"), std::string::npos) << err;
+  EXPECT_NE(err.find("the server rejected an activation of \"ep_controller:1\""), std::string::npos)
+      << err;
 }
 
 // The Lua controller receives through liblcm's own Lua module (its fragment reassembly is
 // liblcm's: docs/security.md), so only forged messages are sent to it here: each is rejected
-// and counted, and it goes on answering.
+// and counted (or, a notice about another sender, ignored), and it goes on answering.
 TEST_F(ControllerFuzz, LuaControllerSurvivesForgedStatesAndModels) {
   const std::string url = testing::bus_url(kPort + 1, 4194304);
   FakeServer server(url);
@@ -236,10 +263,12 @@ TEST_F(ControllerFuzz, LuaControllerSurvivesForgedStatesAndModels) {
     states.insert(states.end(), list.begin(), list.end());
   std::vector<Bytes> models =
       testing::random_after_fingerprint(bus::testing::encoded(model), random, 500 * kScale);
+  const std::vector<Bytes> notices = forged_notices(random);
+  for (const Bytes& b : notices) server.publish(server.channels().rejection, b);
   for (const Bytes& b : states) server.publish(server.channels().state, b);
   for (const Bytes& b : models) server.publish(server.channels().model, b);
-  std::printf("forged at the Lua controller: %zu states, %zu models sent\n", states.size(),
-              models.size());
+  std::printf("forged at the Lua controller: %zu notices, %zu states, %zu models sent\n",
+              notices.size(), states.size(), models.size());
   ASSERT_TRUE(controller.wait_stderr("rejected", kWaitMs)) << controller.stderr_text();
   const std::size_t answered = server.activation_steps.size();
   ASSERT_TRUE(answers_a_new_state(server, n)) << controller.stderr_text();

@@ -27,6 +27,10 @@ class FakeServerBus final : public bus::ServerBus {
     published.push_back('s');
     if (on_state) on_state(msg);
   }
+  void publish_rejection(const tongue_lcm::lcmt_tongue_rejection& msg) override {
+    rejections.push_back(msg);
+    published.push_back('r');
+  }
   // Everything queued, at once (as LCM hands over a burst); with nothing queued it waits the
   // whole timeout, as a quiet bus does.
   std::vector<bus::IncomingMessage> receive(int timeout_ms) override {
@@ -41,14 +45,17 @@ class FakeServerBus final : public bus::ServerBus {
   void send_raw(Channel channel, std::vector<std::uint8_t> bytes) {
     incoming.push_back({channel, std::move(bytes)});
   }
+  // sender "" names none (every message then counts as it comes).
   void send_activation(std::int64_t step, const std::vector<std::string>& names,
-                       const std::vector<double>& levels) {
+                       const std::vector<double>& levels, const std::string& sender = "",
+                       std::int64_t utime = 0) {
     tongue_lcm::lcmt_tongue_activation msg;
-    msg.utime = 0;
+    msg.utime = utime;
     msg.step = step;
     msg.num_muscles = static_cast<std::int32_t>(names.size());
     msg.names = names;
     msg.levels = levels;
+    msg.sender = sender;
     send_raw(Channel::activation, encode(msg));
   }
   void send_command(const std::string& command) {
@@ -68,7 +75,8 @@ class FakeServerBus final : public bus::ServerBus {
   std::deque<bus::IncomingMessage> incoming;
   std::vector<tongue_lcm::lcmt_tongue_model> models;
   std::vector<tongue_lcm::lcmt_tongue_state> states;
-  std::string published;  // 'm' model, 's' state, in the order published
+  std::vector<tongue_lcm::lcmt_tongue_rejection> rejections;
+  std::string published;  // 'm' model, 's' state, 'r' rejection, in the order published
   int receives = 0;
   // Called on every state published, e.g. a controller that answers it.
   std::function<void(const tongue_lcm::lcmt_tongue_state&)> on_state;

@@ -147,6 +147,64 @@ TEST_F(ServerLoopTest, AControllerAnsweringEachStateDrivesTheRun) {
   EXPECT_EQ(bus_.states.back().activations, (std::vector<double>{0.4}));
 }
 
+// Lock-step over a lossy bus: while the activation for k + 1 is late, state k goes out again
+// after 10, 20, 40 ms (here), then no more; the silence rule then applies.
+TEST_F(ServerLoopTest, AStateIsPublishedAgainWhileTheActivationIsLate) {
+  ServerOptions options = with_run_file();
+  options.repeat_ms = 10;
+  options.repeats = 3;
+  options.timeout_ms = 500;
+  options.on_silence = OnSilence::stop;
+  ASSERT_EQ(status(run(options)), status(common::kExitSilence));
+  EXPECT_EQ(published_steps(), (std::vector<std::int64_t>{0, 0, 0, 0}));
+  for (const lcmt_tongue_state& s : bus_.states) EXPECT_EQ(s.status, "ok");
+  const tongue::testing::RunFile f(dir_ / "run.h5");
+  EXPECT_EQ(f.string_attribute("/", "repeated_states"), "3");
+  EXPECT_EQ(f.string_attribute("/", "repeated_activations"), "0");
+}
+
+// Two named controllers on a bus that loses the first publication of every odd state (nobody
+// answers it) and that delivers some answers twice: the repeats of state k bring the answers, a
+// sender's repeated message is taken once, and the run is the one of a lossless bus, bit for bit.
+TEST_F(ServerLoopTest, LostStatesAndRepeatedAnswersGiveTheLosslessRun) {
+  constexpr std::int64_t kSteps = 6;
+  ServerOptions options;
+  options.controllers = 2;
+  options.repeat_ms = 5;
+  options.max_steps = kSteps;
+  const auto answer = [this](std::int64_t step, int copies) {
+    for (int i = 0; i < copies; ++i) {
+      // The same bytes each time for a step, as a controller repeats its message.
+      bus_.send_activation(step, {"flexor"}, {0.1 * static_cast<double>(step)}, "a:1", step);
+      bus_.send_activation(step, {"extensor"}, {0.05 * static_cast<double>(step % 3)}, "b:2", step);
+    }
+  };
+  bus_.on_state = [&answer](const lcmt_tongue_state& s) { answer(s.step + 1, 1); };
+  ASSERT_EQ(status(run(options, tongue::testing::kTwoMuscleBoxScene)), status(common::kExitOk));
+  ASSERT_EQ(published_steps(), (std::vector<std::int64_t>{0, 1, 2, 3, 4, 5, 6}));
+  const std::vector<lcmt_tongue_state> lossless = bus_.states;
+
+  bus_ = FakeServerBus{};
+  std::vector<int> seen(kSteps + 1, 0);
+  bus_.on_state = [&answer, &seen](const lcmt_tongue_state& s) {
+    const int times = ++seen[static_cast<std::size_t>(s.step)];
+    if (s.step % 2 == 1 && times == 1) return;  // lost
+    answer(s.step + 1, s.step % 2 == 0 ? 2 : 1);
+  };
+  ASSERT_EQ(status(run(options, tongue::testing::kTwoMuscleBoxScene)), status(common::kExitOk));
+  std::vector<lcmt_tongue_state> last_of_step(kSteps + 1);
+  for (const lcmt_tongue_state& s : bus_.states) last_of_step[static_cast<std::size_t>(s.step)] = s;
+  for (std::int64_t k = 1; k <= kSteps; ++k) {
+    const auto i = static_cast<std::size_t>(k);
+    EXPECT_EQ(last_of_step[i].positions, lossless[i].positions) << "step " << k;
+    EXPECT_EQ(last_of_step[i].activations, lossless[i].activations) << "step " << k;
+    EXPECT_EQ(last_of_step[i].rejected_messages, 0) << "step " << k;
+    if (k % 2 == 1) {
+      EXPECT_GE(seen[i], 2) << "state " << k << " was not published again";
+    }
+  }
+}
+
 TEST_F(ServerLoopTest, StaleAndFutureActivationsAreRejectedAndCounted) {
   bus_.send_activation(1, {"flexor"}, {0.5});
   bus_.send_activation(1, {"flexor"}, {0.9});  // stale once step 1 is taken

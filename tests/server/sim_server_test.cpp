@@ -13,6 +13,7 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bus/channels.hpp"
@@ -447,6 +448,21 @@ TEST_F(SimServer, PublishEveryIsNotForLockStep) {
   EXPECT_NE(r.err.find("--publish-every applies to --mode fast and realtime only"),
             std::string::npos)
       << r.err;
+}
+
+TEST_F(SimServer, RepeatsAreForLockStepAndBounded) {
+  const std::string scene = write("scene.yaml", kBoxScene), url = bus_url(7748);
+  const std::vector<std::pair<std::string, std::string>> cases{
+      {"--mode fast --repeat-ms 20", "--repeat-ms and --repeats apply to --mode lockstep only"},
+      {"--mode realtime --repeats 3", "--repeat-ms and --repeats apply to --mode lockstep only"},
+      {"--repeat-ms -1", "--repeat-ms must be an integer in [0, 60000] ms"},
+      {"--repeats 21", "--repeats must be an integer in [0, 20]"}};
+  for (const auto& [options, message] : cases) {
+    const testing::RunResult r = testing::run_command(
+        SIM_SERVER_PATH, "'" + scene + "' " + options + " --lcm-url '" + url + "'", dir_);
+    EXPECT_EQ(r.exit_code, 1) << options;
+    EXPECT_NE(r.err.find(message), std::string::npos) << options << ": " << r.err;
+  }
 }
 
 }  // namespace

@@ -141,6 +141,28 @@ TEST_F(LuaController, TwoInstancesOnePerMuscleWithTwoControllers) {
   EXPECT_EQ(run.doubles("/activations"), logged({flexor, extensor}));
 }
 
+// Two Lua controllers naming the same muscle with --controllers 2 (port 7907): the second
+// message for step 1 is rejected, and its sender reads the server's rejection notice and exits
+// 5 with the reason (the other is left waiting; the server stops by its silence rule).
+TEST_F(LuaController, TheOneRejectedForAnOverlapIsToldWhy) {
+  write("scene.yaml", testing::kTwoMuscleBoxScene);
+  const std::string url = bus_url(7907);
+  auto first = start_lua(url, "first", {"flexor=0.5"});
+  auto second = start_lua(url, "second", {"flexor=0.7"});
+  auto server = start_server(
+      url, "run", {"--controllers", "2", "--timeout-ms", "3000", "--on-silence", "stop"});
+  EXPECT_EQ(server->wait_exit(kRunWaitMs), 3) << server->stderr_text();
+  // The rejected one has said so by now; the other waits until its own timeout.
+  const std::string told = "the server rejected its activation for step 1";
+  ChildProcess& rejected = first->stderr_text().find(told) != std::string::npos ? *first : *second;
+  ASSERT_EQ(rejected.wait_exit(kRunWaitMs), 5) << first->stderr_text() << second->stderr_text();
+  EXPECT_NE(rejected.stderr_text().find(told + " (step_controller:"), std::string::npos)
+      << rejected.stderr_text();
+  EXPECT_NE(rejected.stderr_text().find("overlapping activation: \"flexor\" is already set"),
+            std::string::npos)
+      << rejected.stderr_text();
+}
+
 // On the built-in tongue: the paper's styloglossus experiment (scenes/tongue_sg_3n.yaml, settled,
 // SG at 3 N = level 3 / 24 of both halves from t = 0), cut to 5 steps of 4 ms, run by sim_batch
 // from the scene's schedule and by sim_server under the Lua controller: the same positions, bit
