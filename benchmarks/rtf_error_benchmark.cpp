@@ -156,15 +156,19 @@ Reference reference_for(const scene::Scene& base, const std::string& directory) 
 }
 
 // default: the dynamic defaults (a step accepted when Newton's error estimate is below
-// dt x 2.5 mm/s); loose: four times that; residual: the residual and increment tests at 1e-4
-// instead of the error estimate; tight: those tests at 1e-9.
+// beta dt^2 x 2.5 m/s^2, 10 um at dt 4 ms); loose: four times that; residual: the residual and
+// increment tests at 1e-4 instead of the error estimate; tight: those tests at 1e-9.
 enum class Tolerance { loose, normal, residual, tight };
 const char* name(Tolerance t) {
   switch (t) {
-    case Tolerance::loose: return "loose";
-    case Tolerance::normal: return "default";
-    case Tolerance::residual: return "residual";
-    case Tolerance::tight: return "tight";
+    case Tolerance::loose:
+      return "loose";
+    case Tolerance::normal:
+      return "default";
+    case Tolerance::residual:
+      return "residual";
+    case Tolerance::tight:
+      return "tight";
   }
   return "?";
 }
@@ -180,7 +184,8 @@ struct Setting {
 scene::Scene apply(scene::Scene s, const Setting& g) {
   s.analysis.dt = g.dt;
   if (g.tolerance == Tolerance::loose) {
-    s.solver.displacement_tolerance = 4.0 * scene::kDynamicVelocityTolerance * g.dt;  // m
+    s.solver.displacement_tolerance =
+        4.0 * scene::dynamic_newton_settings(s).displacement_tolerance;
     s.solver_keys.insert("displacement_tolerance");
   } else if (g.tolerance == Tolerance::residual || g.tolerance == Tolerance::tight) {
     s.solver.displacement_tolerance = 0.0;

@@ -87,7 +87,7 @@
 //                          # settling; a dynamic analysis defaults residual_rtol and
 //                          # increment_rtol to 1e-4, max_tangent_reuse to 100, reform_ratio to
 //                          # 0.8, quasi_newton_updates to 8 and displacement_tolerance [m] to
-//                          # dt x 2.5 mm/s (dynamic_newton_settings);
+//                          # beta dt^2 x 2.5 m/s^2 (dynamic_newton_settings);
 //                          # threads: element loops on 1 or 2 threads
 //   output:
 //     file: logs/run.h5            # relative to the working directory; default: no file

@@ -341,7 +341,8 @@ fem::NewtonSettings dynamic_newton_settings(const Scene& scene) {
   if (!given("reform_ratio")) s.reform_ratio = 0.8;
   if (!given("quasi_newton_updates")) s.quasi_newton_updates = 8;
   if (!given("displacement_tolerance"))
-    s.displacement_tolerance = kDynamicVelocityTolerance * scene.analysis.dt;
+    s.displacement_tolerance = kDynamicAccelerationTolerance * scene.analysis.newmark.beta *
+                               scene.analysis.dt * scene.analysis.dt;
   return s;
 }
 

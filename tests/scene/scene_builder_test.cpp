@@ -172,7 +172,8 @@ solver: {max_iterations: 11, max_tangent_reuse: 3}
   EXPECT_DOUBLE_EQ(built.dynamic_settings.newton.residual_rtol, 1e-4);
   EXPECT_EQ(built.dynamic_settings.newton.quasi_newton_updates, 8);
   EXPECT_DOUBLE_EQ(built.dynamic_settings.newton.displacement_tolerance,
-                   scene::kDynamicVelocityTolerance * scene.analysis.dt);
+                   scene::kDynamicAccelerationTolerance * 0.3 * scene.analysis.dt *
+                       scene.analysis.dt);  // beta = 0.3 in this scene
   EXPECT_EQ(built.static_settings.newton.displacement_tolerance, 0.0);
   EXPECT_DOUBLE_EQ(built.static_settings.newton.residual_rtol, fem::NewtonSettings{}.residual_rtol);
   EXPECT_EQ(built.static_settings.newton.max_tangent_reuse, 3);

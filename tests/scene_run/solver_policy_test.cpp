@@ -115,13 +115,14 @@ TEST(SolverPolicy, ReusedFactorizationReachesTheFullNewtonState) {
   EXPECT_LT(d, 1e-7);
 }
 
-// The default acceptance (a step's estimated error below dt x 2.5 mm/s = 10 um at dt 4 ms) keeps
+// The default acceptance (a step's estimated error below dt^2/4 x 2.5 m/s^2 = 10 um at 4 ms) keeps
 // the run within that error per step of the converged one: after 15 steps of the fastest motion
 // no node is further from it than 15 such errors would put it if none were damped.
 TEST(SolverPolicy, DefaultAcceptanceKeepsEachStepWithinItsTolerance) {
   const Scene defaults = tongue_scene("tongue_sg_3n");
   const double tolerance = dynamic_newton_settings(defaults).displacement_tolerance;
-  EXPECT_DOUBLE_EQ(tolerance, scene::kDynamicVelocityTolerance * defaults.analysis.dt);
+  EXPECT_DOUBLE_EQ(tolerance, scene::kDynamicAccelerationTolerance * 0.25 * defaults.analysis.dt *
+                                  defaults.analysis.dt);  // m; Newmark beta = 1/4
   const int steps = 15;
   const double d = max_nodal_distance(run_sg(defaults, steps), run_sg(converged(defaults), steps));
   std::printf("  max nodal distance default - converged: %.3g um\n", d * 1e6);
