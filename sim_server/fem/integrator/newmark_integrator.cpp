@@ -174,7 +174,7 @@ bool NewmarkIntegrator::advance(double dt, StepReport& report, int depth) {
   // step about ten times closer to the solution than u_n does; the second-order
   // u_n + dt v_n + dt^2/2 a_n is worse than u_n, because the average-acceleration rule leaves
   // the acceleration of the stiff modes alternating from step to step (it has no numerical
-  // damping; Hughes 2000, sec. 9.3).
+  // damping; Hughes 2000, ch. 9).
   // A prediction that inverts an element (a fast motion over a long step) gives way to u_n.
   const Vector u_n = dofs.gather_free(u_);
   Vector x = u_n + dt * dofs.gather_free(v_);
