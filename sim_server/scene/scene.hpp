@@ -82,12 +82,13 @@
 //   solver: {residual_rtol: 1e-6, residual_atol: 1e-9, increment_rtol: 1e-6,
 //            increment_atol: 1e-12, max_iterations: 25, line_search: true,
 //            max_tangent_reuse: 0, reform_ratio: 0.5, quasi_newton_updates: 0,
-//            displacement_tolerance: 0, threads: 1}
+//            displacement_tolerance: 0, single_precision_solve: false, threads: 1}
 //                          # all optional; defaults of fem::NewtonSettings for statics and the
 //                          # settling; a dynamic analysis defaults residual_rtol and
 //                          # increment_rtol to 1e-4, max_tangent_reuse to 100, reform_ratio to
-//                          # 0.8, quasi_newton_updates to 8 and displacement_tolerance [m] to
-//                          # beta dt^2 x 2.5 m/s^2 (dynamic_newton_settings);
+//                          # 0.8, quasi_newton_updates to 8, single_precision_solve to true
+//                          # and displacement_tolerance [m] to beta dt^2 x 2.5 m/s^2
+//                          # (dynamic_newton_settings);
 //                          # threads: element loops on 1 or 2 threads
 //   output:
 //     file: logs/run.h5            # relative to the working directory; default: no file

@@ -340,6 +340,7 @@ fem::NewtonSettings dynamic_newton_settings(const Scene& scene) {
   if (!given("max_tangent_reuse")) s.max_tangent_reuse = 100;
   if (!given("reform_ratio")) s.reform_ratio = 0.8;
   if (!given("quasi_newton_updates")) s.quasi_newton_updates = 8;
+  if (!given("single_precision_solve")) s.single_precision_solve = true;
   if (!given("displacement_tolerance"))
     s.displacement_tolerance = kDynamicAccelerationTolerance * scene.analysis.newmark.beta *
                                scene.analysis.dt * scene.analysis.dt;

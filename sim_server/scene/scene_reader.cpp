@@ -608,10 +608,11 @@ class Parser : private common::YamlReader {
   void read_solver(const YAML::Node& n, const std::string& path, fem::NewtonSettings& s,
                    std::set<std::string>& keys, int& threads) const {
     expect_map(n, path);
-    check_keys(n, path,
-               {"residual_rtol", "residual_atol", "increment_rtol", "increment_atol",
-                "max_iterations", "line_search", "max_tangent_reuse", "reform_ratio",
-                "quasi_newton_updates", "displacement_tolerance", "threads"});
+    check_keys(
+        n, path,
+        {"residual_rtol", "residual_atol", "increment_rtol", "increment_atol", "max_iterations",
+         "line_search", "max_tangent_reuse", "reform_ratio", "quasi_newton_updates",
+         "displacement_tolerance", "single_precision_solve", "threads"});
     const auto get = [&](const char* key, auto&& read) {
       if (const auto v = n[key]; present(v)) {
         read(v, child_path(path, key));
@@ -626,6 +627,8 @@ class Parser : private common::YamlReader {
         [&](auto v, auto p) { s.displacement_tolerance = non_negative(v, p, "m"); });
     get("max_iterations", [&](auto v, auto p) { s.max_iterations = at_least(v, p, 1); });
     get("line_search", [&](auto v, auto p) { s.line_search = boolean(v, p); });
+    get("single_precision_solve",
+        [&](auto v, auto p) { s.single_precision_solve = boolean(v, p); });
     get("max_tangent_reuse", [&](auto v, auto p) { s.max_tangent_reuse = at_least(v, p, 0); });
     get("quasi_newton_updates",
         [&](auto v, auto p) { s.quasi_newton_updates = at_least(v, p, 0); });

@@ -10,7 +10,8 @@ namespace tongue::fem {
 // and damping forces are affine in x: with a(x) and v(x) the Newmark updates,
 //   M a(x) + C v(x) = S (x - u_n) + b,  S = c0 M + c1 C,  b = M a(u_n) + C v(a(u_n)),
 // c0 = 1 / (beta dt^2), c1 = gamma / (beta dt) (Bathe 1996 sec. 9.2.4): one product with S per
-// residual, and b once per step.
+// residual, and b once per step. The products run on full vectors in node blocks
+// (NodeBlockMatrix), where the residual is assembled, before its free entries are gathered.
 class NewmarkIntegrator::StepProblem : public NonlinearProblem {
  public:
   StepProblem(NewmarkIntegrator& integrator, double dt)
@@ -23,9 +24,15 @@ class NewmarkIntegrator::StepProblem : public NonlinearProblem {
         a_n_(dofs_.gather_free(integrator.a_)),
         u_full_(integrator.u_),
         S_(integrator.dynamic_matrix(dt)) {
-    const Vector a_start = acceleration(u_n_);
-    b_ = in_.mass_.multiply(a_start);
-    if (in_.damping_) in_.damping_->multiply_add(velocity(a_start), b_);
+    // b over all dofs: v_n and a_n are zero at prescribed dofs, and so are the blocks' rows.
+    const double beta = in_.settings_.newmark.beta, gamma = in_.settings_.newmark.gamma;
+    const Vector a_start = -c0_ * dt_ * in_.v_ - (0.5 / beta - 1.0) * in_.a_;
+    b_full_ = Vector::Zero(u_full_.size());
+    in_.mass_blocks_.multiply_add(a_start, b_full_);
+    if (in_.damping_) {
+      const Vector v_start = in_.v_ + dt_ * ((1.0 - gamma) * in_.a_ + gamma * a_start);
+      in_.damping_blocks_.multiply_add(v_start, b_full_);
+    }
   }
 
   std::shared_ptr<const SparsityPattern> pattern() const override {
@@ -55,8 +62,11 @@ class NewmarkIntegrator::StepProblem : public NonlinearProblem {
  private:
   bool evaluate(const Vector& x, Vector& r, SymmetricMatrix* K) {
     if (!in_.system_.residual(full(x), 1.0, r_full_, K, &load_norm_).ok) return false;
-    r = dofs_.gather_free(r_full_) + b_;
-    S_.multiply_add(x - u_n_, r);
+    // u - u_n is zero at prescribed dofs: both hold the prescribed values there.
+    increment_ = u_full_ - in_.u_;
+    r_full_ += b_full_;
+    in_.dynamic_blocks_.multiply_add(increment_, r_full_);
+    r = dofs_.gather_free(r_full_);
     return true;
   }
 
@@ -64,9 +74,8 @@ class NewmarkIntegrator::StepProblem : public NonlinearProblem {
   const DofMap& dofs_;
   double dt_, c0_;
   Vector u_n_, v_n_, a_n_;
-  Vector u_full_, r_full_;
+  Vector u_full_, r_full_, increment_, b_full_;
   const SymmetricMatrix& S_;
-  Vector b_;
   double load_norm_ = 0.0;
 };
 
@@ -76,6 +85,7 @@ const SymmetricMatrix& NewmarkIntegrator::dynamic_matrix(double dt) {
     if (!dynamic_matrix_) dynamic_matrix_.emplace(mass_.shared_pattern());
     dynamic_matrix_->scale_and_add(0.0, 1.0 / (p.beta * dt * dt), mass_);
     if (damping_) dynamic_matrix_->scale_and_add(1.0, p.gamma / (p.beta * dt), *damping_);
+    dynamic_blocks_ = NodeBlockMatrix(*dynamic_matrix_, system_.solid().dofs());
     dynamic_matrix_dt_ = dt;
   }
   return *dynamic_matrix_;
@@ -85,6 +95,7 @@ NewmarkIntegrator::NewmarkIntegrator(const MechanicalSystem& system, DynamicSett
     : system_(system),
       settings_(settings),
       mass_(system.solid().mass_matrix(settings.lumped_mass)),
+      mass_blocks_(mass_, system.solid().dofs()),
       newton_(system.solid().pattern(), settings.newton) {
   const NewmarkParameters& p = settings_.newmark;
   if (!(p.beta > 0.0) || !(p.gamma >= 0.5)) {
@@ -123,6 +134,7 @@ void NewmarkIntegrator::initialize(const Vector& u0, const Vector& v0, double t0
       system_.solid().assemble(u_, f_int, &K0);
       damping_->scale_and_add(1.0, d.stiffness_coefficient, K0);
     }
+    damping_blocks_ = NodeBlockMatrix(*damping_, dofs);
   }
   // M a0 = f_ext - f_int - C v0 over the free dofs.
   Vector rhs = -dofs.gather_free(r_full);

@@ -50,6 +50,15 @@ CholmodSolver::CholmodSolver(std::shared_ptr<const SparsityPattern> pattern)
   std::copy(p.column_start.begin(), p.column_start.end(), static_cast<int*>(impl_->matrix->p));
   std::copy(p.row_index.begin(), p.row_index.end(), static_cast<int*>(impl_->matrix->i));
 
+  // The fill-reducing ordering: the better of AMD (CHOLMOD's default) and nested dissection
+  // with small leaves and no constrained minimum degree on them (CHOLMOD's method 6 when it
+  // tries all). On the tongue the latter has 18 % fewer nonzeros in L and 40 % fewer flops
+  // (docs/speed.md); the analysis, once per pattern, takes about 30 ms instead of 3.
+  c.nmethods = 2;
+  c.method[0].ordering = CHOLMOD_AMD;
+  c.method[1].ordering = CHOLMOD_NESDIS;
+  c.method[1].nd_small = 4;
+  c.method[1].nd_camd = 0;
   const auto start = std::chrono::steady_clock::now();
   impl_->factor = cholmod_analyze(impl_->matrix, &c);
   analysis_seconds_ = seconds_since(start);
@@ -98,12 +107,18 @@ FactorizationReport CholmodSolver::factorize(const SymmetricMatrix& matrix) {
     }
   }
   factored_ = report.ok;
+  if (report.ok && single_precision_) single_factor_.assign(*impl_->factor);
   report.seconds = seconds_since(start);
   return report;
 }
 
 Vector CholmodSolver::solve(const Vector& b) const {
   if (!factored_) throw std::logic_error("solve() called without a successful factorization");
+  if (single_precision_ && !single_factor_.empty()) {
+    Vector x(b.size());
+    single_factor_.solve(b.data(), x.data());
+    return x;
+  }
   cholmod_common& c = impl_->common;
   std::copy(b.data(), b.data() + b.size(), static_cast<double*>(impl_->rhs->x));
   cholmod_dense* x = cholmod_solve(CHOLMOD_A, impl_->factor, impl_->rhs, &c);

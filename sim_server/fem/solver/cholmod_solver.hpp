@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "fem/assembly/sparse_matrix.hpp"
+#include "fem/solver/single_precision_factor.hpp"
 
 namespace tongue::fem {
 
@@ -30,6 +31,13 @@ class CholmodSolver {
   FactorizationReport factorize(const SymmetricMatrix& matrix);
   // Solves A x = b with the last successful factorization.
   Vector solve(const Vector& b) const;
+  // Solves in single precision (single_precision_factor.hpp) from the next factorization on:
+  // for iterations that judge their result on a double-precision residual.
+  void set_single_precision(bool single) {
+    single_precision_ = single;
+    if (!single) single_factor_ = SinglePrecisionFactor();
+  }
+  bool single_precision() const { return single_precision_; }
   bool has_factor() const { return factored_; }
 
   double analysis_seconds() const { return analysis_seconds_; }
@@ -42,6 +50,8 @@ class CholmodSolver {
   std::shared_ptr<const SparsityPattern> pattern_;
   double analysis_seconds_ = 0.0;
   bool factored_ = false;
+  bool single_precision_ = false;
+  SinglePrecisionFactor single_factor_;  // empty until a factorization in single precision
 };
 
 }  // namespace tongue::fem

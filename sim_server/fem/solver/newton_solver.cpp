@@ -68,6 +68,7 @@ bool NewtonSolver::refactorize(NonlinearProblem& problem, const Vector& x, Vecto
     return false;
   }
   report.assembly_seconds += seconds_since(start);
+  linear_solver_.set_single_precision(settings_.single_precision_solve);
   const FactorizationReport f = linear_solver_.factorize(tangent_);
   report.factorization_seconds += f.seconds;
   ++report.factorizations;

@@ -38,6 +38,10 @@ struct NewtonSettings {
   // the two-loop form of Nocedal & Wright 2006, alg. 7.4, with the factor as H_0). They are
   // dropped with the factor. 0: plain modified Newton.
   int quasi_newton_updates = 0;
+  // Corrections solved with a single-precision copy of the factor (single_precision_factor.hpp):
+  // faster solves; each correction is a little less exact, which a modified Newton iteration
+  // judged on the double-precision residual and error estimate absorbs.
+  bool single_precision_solve = false;
 };
 
 struct NewtonReport {

@@ -1,0 +1,68 @@
+#include "fem/assembly/node_block_matrix.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+namespace tongue::fem {
+
+NodeBlockMatrix::NodeBlockMatrix(const SymmetricMatrix& matrix, const DofMap& dofs) {
+  const SparsityPattern& p = matrix.pattern();
+  if (p.size != dofs.num_free())
+    throw std::invalid_argument("node block matrix: matrix and dof map differ in size");
+  const int num_nodes = dofs.num_dofs() / 3;
+  const std::vector<int>& full = dofs.free_dofs();
+
+  // The node pairs the stored entries couple, both ways.
+  std::vector<std::vector<int>> neighbours(num_nodes);
+  for (int col = 0; col < p.size; ++col) {
+    for (int k = p.column_start[col]; k < p.column_start[col + 1]; ++k) {
+      const int a = full[p.row_index[k]] / 3, b = full[col] / 3;
+      neighbours[a].push_back(b);
+      neighbours[b].push_back(a);
+    }
+  }
+  row_start_.assign(num_nodes + 1, 0);
+  for (int a = 0; a < num_nodes; ++a) {
+    auto& n = neighbours[a];
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+    row_start_[a + 1] = row_start_[a] + static_cast<int>(n.size());
+    column_node_.insert(column_node_.end(), n.begin(), n.end());
+  }
+  blocks_.assign(9 * column_node_.size(), 0.0);
+
+  const auto block = [&](int a, int b) {
+    const auto begin = column_node_.begin() + row_start_[a];
+    const auto end = column_node_.begin() + row_start_[a + 1];
+    return 9 * static_cast<int>(std::lower_bound(begin, end, b) - column_node_.begin());
+  };
+  const std::vector<double>& values = matrix.values();
+  for (int col = 0; col < p.size; ++col) {
+    for (int k = p.column_start[col]; k < p.column_start[col + 1]; ++k) {
+      const int i = full[p.row_index[k]], j = full[col];
+      blocks_[block(i / 3, j / 3) + 3 * (i % 3) + j % 3] = values[k];
+      if (i != j) blocks_[block(j / 3, i / 3) + 3 * (j % 3) + i % 3] = values[k];
+    }
+  }
+}
+
+void NodeBlockMatrix::multiply_add(const Vector& x, Vector& y) const {
+  const int num_nodes = static_cast<int>(row_start_.size()) - 1;
+  const double* b = blocks_.data();
+  const double* xv = x.data();
+  for (int a = 0; a < num_nodes; ++a) {
+    double y0 = 0.0, y1 = 0.0, y2 = 0.0;
+    for (int k = row_start_[a]; k < row_start_[a + 1]; ++k, b += 9) {
+      const double* xb = xv + 3 * column_node_[k];
+      y0 += b[0] * xb[0] + b[1] * xb[1] + b[2] * xb[2];
+      y1 += b[3] * xb[0] + b[4] * xb[1] + b[5] * xb[2];
+      y2 += b[6] * xb[0] + b[7] * xb[1] + b[8] * xb[2];
+    }
+    // Rows of prescribed dofs are zero: adding 0 leaves y there as it was.
+    y[3 * a] += y0;
+    y[3 * a + 1] += y1;
+    y[3 * a + 2] += y2;
+  }
+}
+
+}  // namespace tongue::fem

@@ -1,0 +1,118 @@
+// CholmodSolver's single-precision solves (SinglePrecisionFactor) against Eigen's dense Cholesky
+// in double precision, on a Newmark-like effective tangent of a box large enough for many
+// supernodes with rows below their diagonal blocks.
+#include <gtest/gtest.h>
+
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <memory>
+#include <vector>
+
+#include "fem/assembly/solid_model.hpp"
+#include "fem/material/material_factory.hpp"
+#include "fem/mesh/box_generator.hpp"
+#include "fem/solver/cholmod_solver.hpp"
+
+namespace tongue::fem {
+namespace {
+
+// Float's unit round-off, 2^-24.
+constexpr double kFloatRoundoff = 5.96e-8;
+
+struct Problem {
+  std::shared_ptr<const SolidModel> model;
+  SymmetricMatrix A;
+  Eigen::MatrixXd dense;
+  Vector b;
+};
+
+// An 8 x 5 x 5 box of 5 mm Mooney-Rivlin elements clamped at x = 0 and sheared; A = K + c0 M at
+// dt = 4 ms, as a dynamic step factorizes.
+Problem effective_tangent() {
+  Mesh mesh = make_box(Vec3::Zero(), Vec3(0.04, 0.025, 0.025), 8, 5, 5);
+  std::vector<PrescribedDof> clamp;
+  for (int n : mesh.node_set("x_min"))
+    for (int c = 0; c < 3; ++c) clamp.push_back({n, c, 0.0});
+  auto model =
+      std::make_shared<const SolidModel>(std::move(mesh), make_material("mooney_rivlin5", {}),
+                                         Formulation::mean_dilatation, 1000.0, clamp);
+  Vector u = Vector::Zero(model->num_dofs());
+  for (int n = 0; n < model->mesh().num_nodes(); ++n) {
+    const Vec3& X = model->mesh().nodes[n];
+    u.segment<3>(3 * n) = Vec3(0.0, 0.1 * X.x(), 0.02 * X.y());
+  }
+  SymmetricMatrix A(model->pattern());
+  Vector f;
+  EXPECT_TRUE(model->assemble(u, f, &A).ok);
+  const double dt = 4e-3;
+  A.scale_and_add(1.0, 1.0 / (0.25 * dt * dt), model->mass_matrix(false));
+  Problem p{model, A, A.to_dense(), Vector(A.pattern().size)};
+  for (int i = 0; i < p.b.size(); ++i) p.b[i] = std::cos(0.37 * i) + 0.1;
+  return p;
+}
+
+double condition_number(const Eigen::MatrixXd& A) {
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A, Eigen::EigenvaluesOnly);
+  return eig.eigenvalues().maxCoeff() / eig.eigenvalues().minCoeff();
+}
+
+TEST(SinglePrecisionFactor, SolvesToTheAccuracyOfAFloatFactor) {
+  const Problem p = effective_tangent();
+  CholmodSolver solver(p.model->pattern());
+  solver.set_single_precision(true);
+  ASSERT_TRUE(solver.factorize(p.A).ok);
+  const Vector exact = Eigen::LLT<Eigen::MatrixXd>(p.dense).solve(p.b);
+  const Vector x = solver.solve(p.b);
+  const double error = (x - exact).norm() / exact.norm();
+  // A solve with a factor rounded to float has a relative error of at most about
+  // cond(A) n u_float (Higham 2002, thm. 10.4 with the factor's rounding as the backward
+  // error); in practice far less. It is not double precision's round-off either, which would
+  // mean the float copy was not used.
+  const double cond = condition_number(p.dense);
+  EXPECT_LT(error, cond * kFloatRoundoff);
+  EXPECT_LT(error, 1e-4);
+  EXPECT_GT(error, 1e-12);
+}
+
+TEST(SinglePrecisionFactor, RefinementAgainstTheDoubleResidualConverges) {
+  // Iterative refinement x += A^-1 (b - A x) with the float solve contracts the error by about
+  // cond(A) u_float per step (Higham 2002, sec. 12.1): the property modified Newton relies on.
+  // A wrong entry, row or permutation in the copy would stall it.
+  const Problem p = effective_tangent();
+  CholmodSolver solver(p.model->pattern());
+  solver.set_single_precision(true);
+  ASSERT_TRUE(solver.factorize(p.A).ok);
+  const Vector exact = Eigen::LLT<Eigen::MatrixXd>(p.dense).solve(p.b);
+  Vector x = solver.solve(p.b);
+  double error = (x - exact).norm() / exact.norm();
+  for (int k = 0; k < 3; ++k) {
+    x += solver.solve(p.b - p.dense * x);
+    const double next = (x - exact).norm() / exact.norm();
+    // Each step gains at least two digits until double's round-off (cond * 1e-16) is reached.
+    EXPECT_LT(next, std::max(1e-2 * error, 1e-12));
+    error = next;
+  }
+  EXPECT_LT(error, 1e-12);
+}
+
+TEST(SinglePrecisionFactor, FollowsEveryFactorizationAndCanBeSwitchedOff) {
+  const Problem p = effective_tangent();
+  CholmodSolver solver(p.model->pattern());
+  solver.set_single_precision(true);
+  ASSERT_TRUE(solver.factorize(p.A).ok);
+  // A new factorization (twice the matrix) replaces the float copy: the solution halves.
+  SymmetricMatrix twice = p.A;
+  twice.scale_and_add(2.0, 0.0, p.A);
+  const Vector first = solver.solve(p.b);
+  ASSERT_TRUE(solver.factorize(twice).ok);
+  const Vector second = solver.solve(p.b);
+  EXPECT_LT((2.0 * second - first).norm() / first.norm(), 1e-5);  // float round-off, above
+  // Off: double precision again, at once.
+  solver.set_single_precision(false);
+  const Vector exact = Eigen::LLT<Eigen::MatrixXd>(twice.to_dense()).solve(p.b);
+  EXPECT_LT((solver.solve(p.b) - exact).norm() / exact.norm(), 1e-10);
+}
+
+}  // namespace
+}  // namespace tongue::fem
