@@ -134,16 +134,6 @@ Row measure(const scene::Scene& base, int refinement, int steps, int reps, int t
     single.factorize(K);
     const double t = median_seconds(reps, [&] { single.solve(b); });
     const fem::Vector x64 = chol.solve(b), x32 = single.solve(b);
-    for (int rep = 0; rep < 3; ++rep) {
-      auto t0 = Clock::now();
-      for (int i = 0; i < 1000; ++i) single.solve(b);
-      auto t1 = Clock::now();
-      for (int i = 0; i < 1000; ++i) chol.solve(b);
-      auto t2 = Clock::now();
-      std::printf("1000 solves: single %.3f ms each, double %.3f ms each\n",
-                  std::chrono::duration<double>(t1 - t0).count(),
-                  std::chrono::duration<double>(t2 - t1).count());
-    }
     std::printf("  refinement %d: solve in single precision %.3f ms, relative difference %.2e\n",
                 refinement, t * 1e3, (x32 - x64).norm() / x64.norm());
   }
