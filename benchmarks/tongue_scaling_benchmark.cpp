@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "fem/assembly/node_block_matrix.hpp"
 #include "fem/integrator/newmark_integrator.hpp"
 #include "fem/solver/cholmod_solver.hpp"
 #include "scene/scene_builder.hpp"
@@ -97,6 +98,16 @@ Row measure(const scene::Scene& base, int refinement, int steps, int reps, int t
     const double solid_only = median_seconds(reps, [&] { solid.assemble(u, f, nullptr); });
     const fem::SymmetricMatrix M0 = solid.mass_matrix(false);
     const double product = median_seconds(reps, [&] { M0.multiply_add(u.head(row.free_dofs), f); });
+    // The same product in node blocks on full vectors, as the time steps do it, with a
+    // tangent's pattern of full 3 x 3 blocks (K + M).
+    fem::SymmetricMatrix KM = M0;
+    solid.assemble(u, f, &KM);
+    KM.scale_and_add(1.0, 1e5, M0);
+    const fem::NodeBlockMatrix blocks(KM, solid.dofs());
+    fem::Vector y = fem::Vector::Zero(u.size());
+    const double block_product = median_seconds(reps, [&] { blocks.multiply_add(u, y); });
+    std::printf("  refinement %d: one product in node blocks %.3f ms\n", refinement,
+                block_product * 1e3);
     const double fibres =
         median_seconds(reps, [&] { built.muscles->add(u, 1.0, f, nullptr); });  // SG active
     std::printf(

@@ -12,18 +12,18 @@ NodeBlockMatrix::NodeBlockMatrix(const SymmetricMatrix& matrix, const DofMap& do
   const int num_nodes = dofs.num_dofs() / 3;
   const std::vector<int>& full = dofs.free_dofs();
 
-  // The node pairs the stored entries couple, both ways.
+  // The node pairs the stored entries couple, each once: (a, b) with a <= b.
   std::vector<std::vector<int>> neighbours(num_nodes);
   for (int col = 0; col < p.size; ++col) {
     for (int k = p.column_start[col]; k < p.column_start[col + 1]; ++k) {
       const int a = full[p.row_index[k]] / 3, b = full[col] / 3;
-      neighbours[a].push_back(b);
-      neighbours[b].push_back(a);
+      neighbours[std::min(a, b)].push_back(std::max(a, b));
     }
   }
   row_start_.assign(num_nodes + 1, 0);
   for (int a = 0; a < num_nodes; ++a) {
     auto& n = neighbours[a];
+    n.push_back(a);  // every row starts with its diagonal block, zero or not
     std::sort(n.begin(), n.end());
     n.erase(std::unique(n.begin(), n.end()), n.end());
     row_start_[a + 1] = row_start_[a] + static_cast<int>(n.size());
@@ -40,8 +40,15 @@ NodeBlockMatrix::NodeBlockMatrix(const SymmetricMatrix& matrix, const DofMap& do
   for (int col = 0; col < p.size; ++col) {
     for (int k = p.column_start[col]; k < p.column_start[col + 1]; ++k) {
       const int i = full[p.row_index[k]], j = full[col];
-      blocks_[block(i / 3, j / 3) + 3 * (i % 3) + j % 3] = values[k];
-      if (i != j) blocks_[block(j / 3, i / 3) + 3 * (j % 3) + i % 3] = values[k];
+      const int a = i / 3, b = j / 3;
+      if (a < b) {
+        blocks_[block(a, b) + 3 * (i % 3) + j % 3] = values[k];
+      } else if (a > b) {
+        blocks_[block(b, a) + 3 * (j % 3) + i % 3] = values[k];
+      } else {  // the diagonal block, both of its triangles
+        blocks_[block(a, a) + 3 * (i % 3) + j % 3] = values[k];
+        blocks_[block(a, a) + 3 * (j % 3) + i % 3] = values[k];
+      }
     }
   }
 }
@@ -50,18 +57,28 @@ void NodeBlockMatrix::multiply_add(const Vector& x, Vector& y) const {
   const int num_nodes = static_cast<int>(row_start_.size()) - 1;
   const double* b = blocks_.data();
   const double* xv = x.data();
+  double* yv = y.data();
   for (int a = 0; a < num_nodes; ++a) {
-    double y0 = 0.0, y1 = 0.0, y2 = 0.0;
-    for (int k = row_start_[a]; k < row_start_[a + 1]; ++k, b += 9) {
+    const double x0 = xv[3 * a], x1 = xv[3 * a + 1], x2 = xv[3 * a + 2];
+    // The diagonal block first, then the blocks right of it and their transposes below it.
+    double y0 = b[0] * x0 + b[1] * x1 + b[2] * x2;
+    double y1 = b[3] * x0 + b[4] * x1 + b[5] * x2;
+    double y2 = b[6] * x0 + b[7] * x1 + b[8] * x2;
+    b += 9;
+    for (int k = row_start_[a] + 1; k < row_start_[a + 1]; ++k, b += 9) {
       const double* xb = xv + 3 * column_node_[k];
+      double* yb = yv + 3 * column_node_[k];
       y0 += b[0] * xb[0] + b[1] * xb[1] + b[2] * xb[2];
       y1 += b[3] * xb[0] + b[4] * xb[1] + b[5] * xb[2];
       y2 += b[6] * xb[0] + b[7] * xb[1] + b[8] * xb[2];
+      yb[0] += b[0] * x0 + b[3] * x1 + b[6] * x2;
+      yb[1] += b[1] * x0 + b[4] * x1 + b[7] * x2;
+      yb[2] += b[2] * x0 + b[5] * x1 + b[8] * x2;
     }
     // Rows of prescribed dofs are zero: adding 0 leaves y there as it was.
-    y[3 * a] += y0;
-    y[3 * a + 1] += y1;
-    y[3 * a + 2] += y2;
+    yv[3 * a] += y0;
+    yv[3 * a + 1] += y1;
+    yv[3 * a + 2] += y2;
   }
 }
 

@@ -1,13 +1,14 @@
 #pragma once
 // A symmetric matrix over the free dofs, stored for fast products with full (3 n) vectors:
-// dense 3 x 3 blocks coupling two nodes, both triangles, in compressed rows of nodes (block
-// CSR; Saad 2003, sec. 3.4). Entries of prescribed dofs are zero blocks' rows and columns.
+// dense 3 x 3 blocks coupling two nodes, the upper triangle of blocks in compressed rows of
+// nodes (block CSR; Saad 2003, sec. 3.4), each row starting with its diagonal block. Entries
+// of prescribed dofs are zero in the blocks.
 //
 // Why a second storage: SymmetricMatrix keeps one triangle in compressed columns, the layout
 // CHOLMOD factorizes, and its product reads one index per value and scatters into y. The
 // constant matrices of a time step (mass, damping, their Newmark combination) are multiplied
 // several times per step; in blocks each row of nodes gathers three entries of x per nine
-// values and sums into three registers, which vectorizes.
+// values, and each block off the diagonal serves both of its triangles.
 #include <vector>
 
 #include "fem/assembly/dof_map.hpp"

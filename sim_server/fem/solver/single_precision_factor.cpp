@@ -17,6 +17,8 @@ struct Layout {
   int num_super;
   const int *super, *row_start, *value_start, *rows;
   const float *values, *inverse_diagonal;
+  const long* transposed_start;
+  const float* transposed;
 };
 
 // sum_i a[i] b[i], vectorized as a reduction (OpenMP's simd directive allows the reordering).
@@ -95,10 +97,15 @@ TONGUE_VECTOR_CLONES void backward(const Layout& f, float* __restrict y, float* 
       yk[c + 3] -= s3;
     }
     for (; c < cols; ++c) yk[c] -= dot(l21 + static_cast<long>(c) * height, work, below);
+    // The diagonal block's transpose, by columns: U = L11^T stored column-major, so that each
+    // solved entry updates the ones above it with one contiguous axpy, as in forward().
+    const float* upper = f.transposed + f.transposed_start[k];
     for (int c = cols - 1; c >= 0; --c) {
-      const float* column = block + static_cast<long>(c) * height;
-      yk[c] =
-          (yk[c] - dot(column + c + 1, yk + c + 1, cols - c - 1)) * f.inverse_diagonal[first + c];
+      const float v = yk[c] * f.inverse_diagonal[first + c];
+      yk[c] = v;
+      const float* __restrict column = upper + static_cast<long>(c) * cols;
+#pragma omp simd
+      for (int i = 0; i < c; ++i) yk[i] -= column[i] * v;
     }
   }
 }
@@ -132,6 +139,19 @@ void SinglePrecisionFactor::assign(const cholmod_factor& factor) {
     for (int c = 0; c < super[k + 1] - super[k]; ++c)
       inverse_diagonal_[super[k] + c] = static_cast<float>(1.0 / x[px[k] + c * height + c]);
   }
+  transposed_start_.assign(num_super + 1, 0);
+  for (int k = 0; k < num_super; ++k) {
+    const long cols = super[k + 1] - super[k];
+    transposed_start_[k + 1] = transposed_start_[k] + cols * cols;
+  }
+  transposed_.assign(transposed_start_[num_super], 0.0f);
+  for (int k = 0; k < num_super; ++k) {
+    const int cols = super[k + 1] - super[k], height = pi[k + 1] - pi[k];
+    float* upper = transposed_.data() + transposed_start_[k];
+    for (int c = 0; c < cols; ++c)  // column c of U = L11^T ...
+      for (int i = 0; i <= c; ++i)  // ... holds row c of L11
+        upper[static_cast<long>(c) * cols + i] = static_cast<float>(x[px[k] + i * height + c]);
+  }
   y_.resize(n);
   work_.resize(widest);
 }
@@ -146,7 +166,9 @@ void SinglePrecisionFactor::solve(const double* b, double* x) const {
                       value_start_.data(),
                       rows_.data(),
                       values_.data(),
-                      inverse_diagonal_.data()};
+                      inverse_diagonal_.data(),
+                      transposed_start_.data(),
+                      transposed_.data()};
   forward(layout, y_.data(), work_.data());
   backward(layout, y_.data(), work_.data());
   for (int i = 0; i < n; ++i) x[perm_[i]] = static_cast<double>(y_[i]);

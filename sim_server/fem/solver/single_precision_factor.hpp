@@ -36,6 +36,10 @@ class SinglePrecisionFactor {
   std::vector<int> super_, row_start_, value_start_, rows_, perm_;
   std::vector<float> values_;
   std::vector<float> inverse_diagonal_;  // 1 / L(j, j), per column
+  // Each supernode's diagonal block transposed (column-major cols x cols), for the backward
+  // substitution, and where each starts.
+  std::vector<long> transposed_start_;
+  std::vector<float> transposed_;
   mutable std::vector<float> y_, work_;
 };
 
