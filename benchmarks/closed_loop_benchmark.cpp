@@ -32,6 +32,8 @@
 #include <thread>
 #include <vector>
 
+#include <yaml-cpp/yaml.h>
+
 #include "bus/channels.hpp"
 #include "run_figures.hpp"
 #include "run_file/run_file_reader.hpp"
@@ -91,16 +93,11 @@ double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// The scene's text with `solver: {threads: N}` added; it must not set a solver of its own.
+// The scene with its solver's threads set to N (the rest of its solver section kept).
 void write_scene_copy(const fs::path& from, int threads, const fs::path& to) {
-  std::ifstream in(from);
-  if (!in) throw std::runtime_error("cannot read " + from.string());
-  std::stringstream text;
-  text << in.rdbuf();
-  const std::string body = text.str();
-  if (body.starts_with("solver:") || body.find("\nsolver:") != std::string::npos)
-    throw std::runtime_error(from.string() + " has a solver section; the copy would repeat it");
-  std::ofstream(to) << body << "\nsolver: {threads: " << threads << "}\n";
+  YAML::Node scene = YAML::LoadFile(from.string());
+  scene["solver"]["threads"] = threads;
+  std::ofstream(to) << YAML::Dump(scene) << "\n";
 }
 
 double timing_attribute(const tongue::run_file::RunFileReader& h5, const std::string& name) {
