@@ -40,8 +40,6 @@ void SceneRun::restart() {
   if (built_.muscles) built_.muscles->set_activations(levels_);
   integrator_ = std::make_unique<fem::NewmarkIntegrator>(*built_.system, built_.dynamic_settings);
   integrator_->initialize(initial_u_, fem::Vector::Zero(initial_u_.size()), 0.0);
-  // The first step's factorization, done here: before the first activation, not in its step.
-  integrator_->prepare(scene_.analysis.dt);
   accept();
   step_ = 0;
 }

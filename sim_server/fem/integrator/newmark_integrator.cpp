@@ -162,17 +162,6 @@ StepReport NewmarkIntegrator::step(double dt) {
   return report;
 }
 
-bool NewmarkIntegrator::prepare(double dt) {
-  if (!initialized_) initialize(u_, v_, t_);
-  if (dt != last_dt_) newton_.invalidate_factor();
-  last_dt_ = dt;
-  if (settings_.newton.max_tangent_reuse == 0) return true;  // full Newton keeps no factor
-  StepProblem problem(*this, dt);
-  const DofMap& dofs = system_.solid().dofs();
-  // At the step's predictor, where its first iteration would form the tangent.
-  return newton_.prepare(problem, dofs.gather_free(u_) + dt * dofs.gather_free(v_));
-}
-
 bool NewmarkIntegrator::at_rest() const {
   return in_equilibrium_ && v_.lpNorm<Eigen::Infinity>() <= kRestSpeed;
 }

@@ -49,12 +49,6 @@ class NewmarkIntegrator {
   // step() without it starts from rest at u = 0.
   void initialize(const Vector& u0, const Vector& v0, double t0 = 0.0);
 
-  // Forms and factorizes the tangent of a step of dt from the current state, so that the next
-  // step() of that length starts with a factor instead of forming one: for a caller that has
-  // time before its first step (a server waiting for its first activation). Nothing else
-  // changes; false when the tangent could not be formed (the step then forms its own).
-  bool prepare(double dt);
-
   // Advances by dt; cuts and retries on failure. When the report says !converged the state is
   // left at the last accepted substep.
   StepReport step(double dt);

@@ -83,20 +83,6 @@ bool NewtonSolver::refactorize(NonlinearProblem& problem, const Vector& x, Vecto
   return true;
 }
 
-bool NewtonSolver::prepare(NonlinearProblem& problem, const Vector& x) {
-  Vector r(x.size());
-  NewtonReport report;
-  if (!refactorize(problem, x, r, report)) {
-    forget_factor();
-    return false;
-  }
-  // Formed where no solve has measured its contraction yet, possibly under other loads than the
-  // first solve's (a step's new muscle activations): that solve's first correction is not
-  // accepted on the assumed contraction alone.
-  contraction_ = std::numeric_limits<double>::infinity();
-  return true;
-}
-
 void NewtonSolver::remember(Vector s, Vector y) {
   // The pair enters only with positive curvature y . s > 0, which keeps H positive definite.
   const double curvature = y.dot(s);

@@ -71,10 +71,6 @@ class NewtonSolver {
   NewtonReport solve(NonlinearProblem& problem, Vector& x, const Vector* origin = nullptr);
   // Forces a fresh tangent at the next iteration (the problem's tangent changed, e.g. new dt).
   void invalidate_factor() { forget_factor(); }
-  // Forms and factorizes the problem's tangent at x ahead of the solves that will reuse it
-  // (with max_tangent_reuse > 0). False, with no factor kept, when that fails: the next solve
-  // then forms its own.
-  bool prepare(NonlinearProblem& problem, const Vector& x);
 
   const NewtonSettings& settings() const { return settings_; }
   NewtonSettings& settings() { return settings_; }

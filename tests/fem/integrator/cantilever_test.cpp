@@ -136,43 +136,5 @@ TEST(Cantilever, DynamicResponseConvergesAtSecondOrderInTime) {
   }
 }
 
-TEST(Cantilever, APreparedFactorServesTheFirstStepsAndChangesNoState) {
-  const Cantilever c = make_cantilever(1, 0.49);
-  DynamicSettings settings;
-  settings.damping.stiffness_coefficient = 0.028;  // s
-  settings.newton.max_tangent_reuse = 100;
-  settings.newton.quasi_newton_updates = 8;
-  settings.newton.single_precision_solve = true;
-  constexpr double kTolerance = 1e-9;  // m, error left per step (the deflection is ~1 mm)
-  settings.newton.displacement_tolerance = kTolerance;
-  constexpr double dt = 4e-3;  // s
-  constexpr int kSteps = 20;
-
-  NewmarkIntegrator prepared(*c.system, settings), plain(*c.system, settings);
-  ASSERT_TRUE(prepared.prepare(dt));
-  int factorizations = 0;
-  for (int n = 0; n < kSteps; ++n) {
-    const StepReport a = prepared.step(dt), b = plain.step(dt);
-    ASSERT_TRUE(a.converged && b.converged) << a.message << b.message;
-    factorizations += a.factorizations;
-    if (n == 0) {
-      EXPECT_EQ(a.factorizations, 0);  // the prepared one
-      EXPECT_EQ(b.factorizations, 1);
-    }
-  }
-  EXPECT_EQ(factorizations, 0);  // one factor for the whole motion under a fixed load
-  // Both accept states within kTolerance of each step's solution; the damped motion does not
-  // amplify the differences, so after kSteps they are at most 2 kSteps kTolerance apart.
-  EXPECT_LT((prepared.displacement() - plain.displacement()).lpNorm<Eigen::Infinity>(),
-            2 * kSteps * kTolerance);
-  EXPECT_GT(-end_deflection(c, prepared.displacement()), 1e-4);  // it did move
-
-  // Full Newton keeps no factor between iterations: nothing is prepared, its step forms its own.
-  settings.newton.max_tangent_reuse = 0;
-  NewmarkIntegrator full(*c.system, settings);
-  EXPECT_TRUE(full.prepare(dt));
-  EXPECT_GE(full.step(dt).factorizations, 1);
-}
-
 }  // namespace
 }  // namespace tongue::fem
