@@ -8,10 +8,13 @@ namespace tongue::fem {
 
 // One Newmark step as a nonlinear problem in the free displacements x at t + dt. The inertia
 // and damping forces are affine in x: with a(x) and v(x) the Newmark updates,
-//   M a(x) + C v(x) = S (x - u_n) + b,  S = c0 M + c1 C,  b = M a(u_n) + C v(a(u_n)),
-// c0 = 1 / (beta dt^2), c1 = gamma / (beta dt) (Bathe 1996 sec. 9.2.4): one product with S per
-// residual, and b once per step. The products run on full vectors in node blocks
-// (NodeBlockMatrix), where the residual is assembled, before its free entries are gathered.
+//   M a(x) + C v(x) = S (x - u_n) + M a_s + C v_s,  S = c0 M + c1 C,
+// a_s = a(u_n), v_s = v(a_s), c0 = 1 / (beta dt^2), c1 = gamma / (beta dt) (Bathe 1996
+// sec. 9.2.4). With C = (S - c0 M) / c1 the step's constant part needs M alone:
+//   M a(x) + C v(x) = S (x - s) + b,  s = u_n - v_s / c1,  b = M (a_s - (c0 / c1) v_s):
+// one product with S per residual and one with M per step. The products run on full vectors
+// in node blocks (NodeBlockMatrix), where the residual is assembled, before its free entries
+// are gathered.
 class NewmarkIntegrator::StepProblem : public NonlinearProblem {
  public:
   StepProblem(NewmarkIntegrator& integrator, double dt)
@@ -24,15 +27,15 @@ class NewmarkIntegrator::StepProblem : public NonlinearProblem {
         a_n_(dofs_.gather_free(integrator.a_)),
         u_full_(integrator.u_),
         S_(integrator.dynamic_matrix(dt)) {
-    // b over all dofs: v_n and a_n are zero at prescribed dofs, and so are the blocks' rows.
+    // s and b over all dofs: v_n and a_n are zero at prescribed dofs, so s holds the prescribed
+    // values there, as x does, and the blocks' rows and columns there are zero.
     const double beta = in_.settings_.newmark.beta, gamma = in_.settings_.newmark.gamma;
+    const double c1 = gamma / (beta * dt_);
     const Vector a_start = -c0_ * dt_ * in_.v_ - (0.5 / beta - 1.0) * in_.a_;
+    const Vector v_start = in_.v_ + dt_ * ((1.0 - gamma) * in_.a_ + gamma * a_start);
+    shift_full_ = in_.u_ - v_start / c1;
     b_full_ = Vector::Zero(u_full_.size());
-    in_.mass_blocks_.multiply_add(a_start, b_full_);
-    if (in_.damping_) {
-      const Vector v_start = in_.v_ + dt_ * ((1.0 - gamma) * in_.a_ + gamma * a_start);
-      in_.damping_blocks_.multiply_add(v_start, b_full_);
-    }
+    in_.mass_blocks_.multiply_add(a_start - (c0_ / c1) * v_start, b_full_);
   }
 
   std::shared_ptr<const SparsityPattern> pattern() const override {
@@ -62,8 +65,7 @@ class NewmarkIntegrator::StepProblem : public NonlinearProblem {
  private:
   bool evaluate(const Vector& x, Vector& r, SymmetricMatrix* K) {
     if (!in_.system_.residual(full(x), 1.0, r_full_, K, &load_norm_).ok) return false;
-    // u - u_n is zero at prescribed dofs: both hold the prescribed values there.
-    increment_ = u_full_ - in_.u_;
+    increment_ = u_full_ - shift_full_;
     r_full_ += b_full_;
     in_.dynamic_blocks_.multiply_add(increment_, r_full_);
     r = dofs_.gather_free(r_full_);
@@ -74,7 +76,7 @@ class NewmarkIntegrator::StepProblem : public NonlinearProblem {
   const DofMap& dofs_;
   double dt_, c0_;
   Vector u_n_, v_n_, a_n_;
-  Vector u_full_, r_full_, increment_, b_full_;
+  Vector u_full_, r_full_, increment_, shift_full_, b_full_;
   const SymmetricMatrix& S_;
   double load_norm_ = 0.0;
 };
@@ -134,7 +136,6 @@ void NewmarkIntegrator::initialize(const Vector& u0, const Vector& v0, double t0
       system_.solid().assemble(u_, f_int, &K0);
       damping_->scale_and_add(1.0, d.stiffness_coefficient, K0);
     }
-    damping_blocks_ = NodeBlockMatrix(*damping_, dofs);
   }
   // M a0 = f_ext - f_int - C v0 over the free dofs.
   Vector rhs = -dofs.gather_free(r_full);

@@ -82,8 +82,8 @@ class NewmarkIntegrator {
   SymmetricMatrix mass_;
   std::optional<SymmetricMatrix> damping_;
   std::optional<SymmetricMatrix> dynamic_matrix_;
-  // The same three in node blocks, for their products (node_block_matrix.hpp).
-  NodeBlockMatrix mass_blocks_, damping_blocks_, dynamic_blocks_;
+  // M and c0 M + c1 C in node blocks, for the steps' products (node_block_matrix.hpp).
+  NodeBlockMatrix mass_blocks_, dynamic_blocks_;
   double dynamic_matrix_dt_ = 0.0;
   NewtonSolver newton_;
   Vector u_, v_, a_;  // full vectors
