@@ -25,7 +25,6 @@ class NodeBlockMatrix {
   // y += A x, both full vectors (3 n entries); x at prescribed dofs is ignored and y there is
   // left as it is.
   void multiply_add(const Vector& x, Vector& y) const;
-  bool empty() const { return row_start_.empty(); }
 
  private:
   std::vector<int> row_start_;  // num_nodes + 1 entries

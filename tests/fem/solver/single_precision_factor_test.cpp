@@ -25,6 +25,7 @@ struct Problem {
   SymmetricMatrix A;
   Eigen::MatrixXd dense;
   Vector b;
+  Vector exact;  // A^-1 b by Eigen's dense Cholesky in double precision
 };
 
 // An 8 x 5 x 5 box of 5 mm Mooney-Rivlin elements clamped at x = 0 and sheared; A = K + c0 M at
@@ -47,9 +48,18 @@ Problem effective_tangent() {
   EXPECT_TRUE(model->assemble(u, f, &A).ok);
   const double dt = 4e-3;
   A.scale_and_add(1.0, 1.0 / (0.25 * dt * dt), model->mass_matrix(false));
-  Problem p{model, A, A.to_dense(), Vector(A.pattern().size)};
+  Problem p{model, A, A.to_dense(), Vector(A.pattern().size), Vector()};
   for (int i = 0; i < p.b.size(); ++i) p.b[i] = std::cos(0.37 * i) + 0.1;
+  p.exact = Eigen::LLT<Eigen::MatrixXd>(p.dense).solve(p.b);
   return p;
+}
+
+// A solver of p's pattern that solves in single precision, with A factorized.
+std::unique_ptr<CholmodSolver> float_solver(const Problem& p) {
+  auto solver = std::make_unique<CholmodSolver>(p.model->pattern());
+  solver->set_single_precision(true);
+  EXPECT_TRUE(solver->factorize(p.A).ok);
+  return solver;
 }
 
 double condition_number(const Eigen::MatrixXd& A) {
@@ -59,12 +69,8 @@ double condition_number(const Eigen::MatrixXd& A) {
 
 TEST(SinglePrecisionFactor, SolvesToTheAccuracyOfAFloatFactor) {
   const Problem p = effective_tangent();
-  CholmodSolver solver(p.model->pattern());
-  solver.set_single_precision(true);
-  ASSERT_TRUE(solver.factorize(p.A).ok);
-  const Vector exact = Eigen::LLT<Eigen::MatrixXd>(p.dense).solve(p.b);
-  const Vector x = solver.solve(p.b);
-  const double error = (x - exact).norm() / exact.norm();
+  const Vector x = float_solver(p)->solve(p.b);
+  const double error = (x - p.exact).norm() / p.exact.norm();
   // A solve with a factor rounded to float has a relative error of at most about
   // cond(A) n u_float (Higham 2002, thm. 10.4 with the factor's rounding as the backward
   // error); in practice far less. It is not double precision's round-off either, which would
@@ -80,15 +86,12 @@ TEST(SinglePrecisionFactor, RefinementAgainstTheDoubleResidualConverges) {
   // cond(A) u_float per step (Higham 2002, sec. 12.1): the property modified Newton relies on.
   // A wrong entry, row or permutation in the copy would stall it.
   const Problem p = effective_tangent();
-  CholmodSolver solver(p.model->pattern());
-  solver.set_single_precision(true);
-  ASSERT_TRUE(solver.factorize(p.A).ok);
-  const Vector exact = Eigen::LLT<Eigen::MatrixXd>(p.dense).solve(p.b);
-  Vector x = solver.solve(p.b);
-  double error = (x - exact).norm() / exact.norm();
+  const auto solver = float_solver(p);
+  Vector x = solver->solve(p.b);
+  double error = (x - p.exact).norm() / p.exact.norm();
   for (int k = 0; k < 3; ++k) {
-    x += solver.solve(p.b - p.dense * x);
-    const double next = (x - exact).norm() / exact.norm();
+    x += solver->solve(p.b - p.dense * x);
+    const double next = (x - p.exact).norm() / p.exact.norm();
     // Each step gains at least two digits until double's round-off (cond * 1e-16) is reached.
     EXPECT_LT(next, std::max(1e-2 * error, 1e-12));
     error = next;
@@ -98,9 +101,8 @@ TEST(SinglePrecisionFactor, RefinementAgainstTheDoubleResidualConverges) {
 
 TEST(SinglePrecisionFactor, FollowsEveryFactorizationAndCanBeSwitchedOff) {
   const Problem p = effective_tangent();
-  CholmodSolver solver(p.model->pattern());
-  solver.set_single_precision(true);
-  ASSERT_TRUE(solver.factorize(p.A).ok);
+  const auto owner = float_solver(p);
+  CholmodSolver& solver = *owner;
   // A new factorization (twice the matrix) replaces the float copy: the solution halves.
   SymmetricMatrix twice = p.A;
   twice.scale_and_add(2.0, 0.0, p.A);
