@@ -10,9 +10,13 @@
 // first and the last driven state this program sees on the bus), the server's own per-step
 // figures from the run file's timing attributes (physics, run file, state message, loop), and the
 // bus round trip: the span's time outside the server's steps per wait between two steps (the
-// state's way to the controller, its answer, and the activation's way back).
+// state's way to the controller, its answer, and the activation's way back). Where the scenario
+// has a reference run (made by scripts/reference_runs.sh: /ai/ and SG 3 N + relaxation at
+// dt 0.1 ms), the RMS nodal error against it [mm], over the frames whose times both runs have,
+// as scripts/compare_runs.py computes it. The rows also go to a CSV (default
+// logs/closed_loop.csv), which rtf_error_benchmark's diagram draws beside its own settings.
 //
-// Usage: closed_loop_benchmark [--runs K]   (default 3: medians of K runs per row)
+// Usage: closed_loop_benchmark [--runs K] [--csv FILE]   (default 3: medians of K runs per row)
 // Uses ports 7795-7799. Build in Release; with K = 3 it takes about 30 s.
 
 #include <signal.h>
@@ -26,7 +30,8 @@
 #include <exception>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
+#include <limits>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -62,6 +67,7 @@ struct Scenario {
   const char* scene;                    // relative to the source tree
   double duration;                      // s
   std::vector<std::string> controller;  // the program and its own arguments
+  const char* reference;                // its reference run, relative to the source tree; or null
 };
 
 std::vector<Scenario> scenarios() {
@@ -70,15 +76,18 @@ std::vector<Scenario> scenarios() {
       {"ai",
        "scenes/tongue_ep.yaml",
        0.5,
-       {EP_CONTROLLER_PATH, "--plan", src + "/controllers/plans/ai.yaml"}},
+       {EP_CONTROLLER_PATH, "--plan", src + "/controllers/plans/ai.yaml"},
+       "logs/reference/ai_reference-latest/run.h5"},
       {"ku",
        "scenes/tongue_ep.yaml",
        0.5,
-       {EP_CONTROLLER_PATH, "--plan", src + "/controllers/plans/ku.yaml"}},
+       {EP_CONTROLLER_PATH, "--plan", src + "/controllers/plans/ku.yaml"},
+       nullptr},
       {"sg3n_relax",
        "scenes/tongue_sg_3n_relax.yaml",
        0.32,
-       {SEQUENCE_PLAYER_PATH, "--schedule", src + "/controllers/sequences/sg_3n_relax.yaml"}},
+       {SEQUENCE_PLAYER_PATH, "--schedule", src + "/controllers/sequences/sg_3n_relax.yaml"},
+       "logs/reference/tongue_sg_3n_relax_reference.h5"},
   };
 }
 
@@ -87,7 +96,45 @@ struct Figures {
   double steps = 0, simulated = 0, run_wall = 0, rtf = 0, rtf_bus = 0;
   double physics = 0, run_file = 0, state_message = 0, loop = 0, server = 0, wall_step = 0,
          round_trip = 0;
+  double rms_mm = std::numeric_limits<double>::quiet_NaN();  // against the reference; NaN: none
 };
+
+// A reference run's times [s] and positions [m], frame after frame.
+struct Reference {
+  std::vector<double> time, positions;
+  std::size_t frame = 0;  // doubles per frame
+};
+
+// The scenario's reference run, when scripts/reference_runs.sh has made it.
+std::optional<Reference> load_reference(const Scenario& s) {
+  if (!s.reference) return std::nullopt;
+  const fs::path path = fs::path(TONGUE_SOURCE_DIR) / s.reference;
+  if (!fs::exists(path)) return std::nullopt;
+  const tongue::run_file::RunFileReader h5(path.string());
+  Reference r{h5.doubles("/time"), h5.doubles("/positions"), 0};
+  r.frame = r.time.empty() ? 0 : r.positions.size() / r.time.size();
+  return r;
+}
+
+// RMS distance [mm] over the nodes and the frames whose times both runs have (frame times are
+// sums of dt and carry round-off: equal within 1e-9 s), as scripts/compare_runs.py computes it.
+double rms_error_mm(const tongue::run_file::RunFileReader& run, const Reference& ref) {
+  const std::vector<double> time = run.doubles("/time"), positions = run.doubles("/positions");
+  if (time.empty() || positions.size() != time.size() * ref.frame)
+    throw std::runtime_error("the run and its reference are not runs of the same mesh");
+  double squares = 0.0;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < time.size(); ++i) {
+    const auto j = std::lower_bound(ref.time.begin(), ref.time.end(), time[i] - 1e-9);
+    if (j == ref.time.end() || std::abs(*j - time[i]) > 1e-9) continue;
+    const double* a = &positions[i * ref.frame];
+    const double* b = &ref.positions[static_cast<std::size_t>(j - ref.time.begin()) * ref.frame];
+    for (std::size_t k = 0; k < ref.frame; ++k) squares += (a[k] - b[k]) * (a[k] - b[k]);
+    count += ref.frame / 3;
+  }
+  if (count == 0) throw std::runtime_error("the run and its reference have no time in common");
+  return 1e3 * std::sqrt(squares / static_cast<double>(count));
+}
 
 double seconds_since(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
@@ -110,7 +157,8 @@ std::string failure_text(const Member& m, const fs::path& folder) {
 }
 
 // One run in folder on the given port; throws std::runtime_error when it fails.
-Figures run_once(const Scenario& s, int threads, int port, const fs::path& folder) {
+Figures run_once(const Scenario& s, int threads, int port, const fs::path& folder,
+                 const std::optional<Reference>& reference) {
   fs::create_directories(folder);
   const fs::path scene = folder / "scene.yaml";
   write_scene_copy(fs::path(TONGUE_SOURCE_DIR) / s.scene, threads, scene);
@@ -169,10 +217,14 @@ Figures run_once(const Scenario& s, int threads, int port, const fs::path& folde
   f.rtf = f.simulated / span;
   f.wall_step = 1e3 * span / f.steps;
   f.round_trip = (1e3 * span - f.steps * f.server) / (f.steps - 1);
+  if (reference) f.rms_mm = rms_error_mm(h5, *reference);
   return f;
 }
 
+// NaN when any value is (a figure the scenario does not have).
 double median(std::vector<double> v) {
+  if (std::any_of(v.begin(), v.end(), [](double x) { return std::isnan(x); }))
+    return std::numeric_limits<double>::quiet_NaN();
   std::sort(v.begin(), v.end());
   const std::size_t n = v.size();
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
@@ -189,43 +241,51 @@ Figures medians(const std::vector<Figures>& runs) {
   for (double Figures::*field :
        {&Figures::steps, &Figures::simulated, &Figures::run_wall, &Figures::rtf, &Figures::rtf_bus,
         &Figures::physics, &Figures::run_file, &Figures::state_message, &Figures::loop,
-        &Figures::server, &Figures::wall_step, &Figures::round_trip}) {
+        &Figures::server, &Figures::wall_step, &Figures::round_trip, &Figures::rms_mm}) {
     m.*field = of(field);
   }
   return m;
 }
 
-int parse_runs(int argc, char** argv) {
+struct Options {
   int runs = 3;
+  fs::path csv = "logs/closed_loop.csv";
+};
+
+Options parse_options(int argc, char** argv) {
+  Options o;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--runs" && i + 1 < argc) {
-      runs = std::atoi(argv[++i]);
+      o.runs = std::atoi(argv[++i]);
+    } else if (a == "--csv" && i + 1 < argc) {
+      o.csv = argv[++i];
     } else {
-      std::fprintf(stderr, "usage: closed_loop_benchmark [--runs K]\n");
+      std::fprintf(stderr, "usage: closed_loop_benchmark [--runs K] [--csv FILE]\n");
       std::exit(2);
     }
   }
-  if (runs < 1) {
+  if (o.runs < 1) {
     std::fprintf(stderr, "closed_loop_benchmark: --runs must be >= 1\n");
     std::exit(2);
   }
-  return runs;
+  return o;
 }
 
 void print_header(int runs) {
   std::printf(
       "closed loop, lock-step, one controller process; medians of %d run%s; per step in ms\n"
-      "%-10s %7s %5s %6s %6s %6s %7s | %7s %7s %7s %7s %7s | %7s %7s\n",
+      "%-10s %7s %5s %6s %6s %6s %7s | %7s %7s %7s %7s %7s | %7s %7s | %7s\n",
       runs, runs == 1 ? "" : "s", "scenario", "threads", "steps", "sim_s", "wall_s", "RTF",
-      "RTF_bus", "physics", "runfile", "state", "loop", "server", "wall", "bus_rt");
+      "RTF_bus", "physics", "runfile", "state", "loop", "server", "wall", "bus_rt", "RMS_mm");
 }
 
 void print_row(const char* name, int threads, const Figures& f) {
   std::printf(
-      "%-10s %7d %5.0f %6.3f %6.2f %6.3f %7.3f | %7.2f %7.3f %7.3f %7.3f %7.2f | %7.2f %7.2f\n",
+      "%-10s %7d %5.0f %6.3f %6.2f %6.3f %7.3f | %7.2f %7.3f %7.3f %7.3f %7.2f | %7.2f %7.2f | "
+      "%7.4f\n",
       name, threads, f.steps, f.simulated, f.run_wall, f.rtf, f.rtf_bus, f.physics, f.run_file,
-      f.state_message, f.loop, f.server, f.wall_step, f.round_trip);
+      f.state_message, f.loop, f.server, f.wall_step, f.round_trip, f.rms_mm);
   std::fflush(stdout);
 }
 
@@ -236,34 +296,43 @@ const char* const kLegend =
     "physics (SceneRun::step), runfile (the frame), state (build and publish the message), loop\n"
     "(record the messages) and server (their sum): the run file's timing_*_ms, mean per step;\n"
     "wall: span / steps; bus_rt: (span - steps x server) / (steps - 1), the wait between steps\n"
-    "(the state to the controller, its turn, the activation back)\n";
+    "(the state to the controller, its turn, the activation back); RMS_mm: nodal error against\n"
+    "the scenario's dt = 0.1 ms reference (nan: none; bash scripts/reference_runs.sh makes them)\n";
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  const int runs = parse_runs(argc, argv);
+  const Options options = parse_options(argc, argv);
   const fs::path root =
       fs::temp_directory_path() / ("closed_loop_benchmark-" + std::to_string(::getpid()));
   try {
-    print_header(runs);
+    if (options.csv.has_parent_path()) fs::create_directories(options.csv.parent_path());
+    std::ofstream csv(options.csv);
+    if (!csv) throw std::runtime_error("cannot write " + options.csv.string());
+    csv << "scenario,threads,rtf,physics_ms,server_ms,rms_mm\n";
+    print_header(options.runs);
     int turn = 0;
     for (const Scenario& s : scenarios()) {
+      const std::optional<Reference> reference = load_reference(s);
       for (const int threads : {1, 2}) {
         std::vector<Figures> figures;
-        for (int k = 0; k < runs; ++k, ++turn) {
+        for (int k = 0; k < options.runs; ++k, ++turn) {
           // Ports in turn, so that a run never hears a straggler of the one before.
           const fs::path folder = root / (std::string(s.name) + "-t" + std::to_string(threads) +
                                           "-" + std::to_string(k));
-          figures.push_back(run_once(s, threads, kFirstPort + turn % kPorts, folder));
+          figures.push_back(run_once(s, threads, kFirstPort + turn % kPorts, folder, reference));
         }
-        print_row(s.name, threads, medians(figures));
+        const Figures m = medians(figures);
+        print_row(s.name, threads, m);
+        csv << s.name << ',' << threads << ',' << m.rtf << ',' << m.physics << ',' << m.server
+            << ',' << m.rms_mm << '\n';
       }
     }
+    std::printf("%sCSV: %s\n", kLegend, options.csv.c_str());
   } catch (const std::exception& e) {
     std::fprintf(stderr, "closed_loop_benchmark: %s (runs kept in %s)\n", e.what(), root.c_str());
     return 1;
   }
   fs::remove_all(root);
-  std::printf("%s", kLegend);
   return 0;
 }

@@ -11,9 +11,10 @@
 // the best of --repeats runs.
 //
 // Usage: rtf_error_benchmark [--scene FILE] [--csv FILE] [--png FILE] [--reference-dir DIR]
-//                            [--repeats N] [--quick]
+//                            [--repeats N] [--quick] [--closed-loop FILE]
 // Writes the table to stdout, the CSV (default logs/rtf_error.csv) and draws the PNG (default
-// logs/rtf_error.png) with scripts/plot_rtf_error.py.
+// logs/rtf_error.png) with scripts/plot_rtf_error.py, with closed_loop_benchmark's rows (default
+// logs/closed_loop.csv) beside them when that file exists.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -282,6 +283,7 @@ void print_row(const Row& r, std::FILE* to) {
 int run(int argc, char** argv) {
   std::string scene_path = std::string(TONGUE_SOURCE_DIR) + "/scenes/tongue_sg_3n_relax.yaml";
   std::string csv = "logs/rtf_error.csv", png = "logs/rtf_error.png", refdir = "logs/reference";
+  std::string closed_loop_csv = "logs/closed_loop.csv";
   int repeats = 1;
   bool quick = false;
   for (int i = 1; i < argc; ++i) {
@@ -296,6 +298,8 @@ int run(int argc, char** argv) {
       csv = value();
     else if (a == "--png")
       png = value();
+    else if (a == "--closed-loop")
+      closed_loop_csv = value();
     else if (a == "--reference-dir")
       refdir = value();
     else if (a == "--repeats")
@@ -348,8 +352,10 @@ int run(int argc, char** argv) {
     std::printf("no setting met RMS error <= 0.1 mm\n");
   }
 
-  const std::string command = "/usr/bin/python3 " + std::string(TONGUE_SOURCE_DIR) +
-                              "/scripts/plot_rtf_error.py " + csv + " " + png;
+  // closed_loop_benchmark's rows, when it has run, go into the same diagram.
+  std::string command = "/usr/bin/python3 " + std::string(TONGUE_SOURCE_DIR) +
+                        "/scripts/plot_rtf_error.py " + csv + " " + png;
+  if (std::filesystem::exists(closed_loop_csv)) command += " --closed-loop " + closed_loop_csv;
   if (std::system(command.c_str()) != 0) {
     std::fprintf(stderr, "rtf_error_benchmark: the plot failed (%s)\n", command.c_str());
     return 1;

@@ -2,12 +2,17 @@
 """Draws the real-time factor against the RMS nodal error of rtf_error_benchmark's CSV.
 
 Usage: /usr/bin/python3 scripts/plot_rtf_error.py logs/rtf_error.csv logs/rtf_error.png
+           [--closed-loop logs/closed_loop.csv]
 
 Log-log axes; one marker per setting: colour by time step, shape by solver policy and material,
 hollow for 2 threads. The dashed lines are the targets: real time (RTF = 1) and 0.1 mm RMS.
+With --closed-loop, closed_loop_benchmark's rows that have an error against their reference are
+drawn too, as stars labelled with the scenario (dt 4 ms, sim_server and a controller process in
+lock-step; their RTF is the closed loop's, their error against their own reference run).
 """
+import argparse
 import csv
-import sys
+import math
 
 import matplotlib
 
@@ -15,22 +20,40 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 
-def read_rows(path):
+def read_rows(path, needed):
     with open(path, newline="") as f:
         rows = list(csv.DictReader(f))
     if not rows:
         raise SystemExit(f"{path}: no rows")
-    needed = {"dt_ms", "tolerance", "newton", "material", "threads", "rtf", "rms_mm"}
     missing = needed - set(rows[0])
     if missing:
         raise SystemExit(f"{path}: missing columns {sorted(missing)}")
     return rows
 
 
+def draw_closed_loop(ax, path):
+    """The closed-loop rows with an error (one thread) as labelled stars."""
+    drawn = False
+    for r in read_rows(path, {"scenario", "threads", "rtf", "rms_mm"}):
+        rms = float(r["rms_mm"])
+        if r["threads"] != "1" or math.isnan(rms):
+            continue
+        rtf = float(r["rtf"])
+        ax.scatter(max(rms, 1e-6), rtf, marker="*", s=140, color="crimson",
+                   label=None if drawn else "closed loop (lock-step, dt 4 ms)")
+        ax.annotate(r["scenario"], (rms, rtf), textcoords="offset points", xytext=(-7, 6),
+                    ha="right", fontsize=7, color="crimson")
+        drawn = True
+
+
 def main():
-    if len(sys.argv) != 3:
-        raise SystemExit(__doc__)
-    rows = read_rows(sys.argv[1])
+    parser = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
+    parser.add_argument("csv")
+    parser.add_argument("png")
+    parser.add_argument("--closed-loop", help="closed_loop_benchmark's CSV")
+    args = parser.parse_args()
+    rows = read_rows(args.csv,
+                     {"dt_ms", "tolerance", "newton", "material", "threads", "rtf", "rms_mm"})
     dts = sorted({float(r["dt_ms"]) for r in rows})
     colours = plt.cm.viridis([i / max(1, len(dts) - 1) for i in range(len(dts))])
     colour_of = dict(zip(dts, colours))
@@ -60,17 +83,22 @@ def main():
                         fontsize=7)
     for dt in dts:
         ax.scatter([], [], color=colour_of[dt], marker="o", label=f"dt {dt:g} ms")
+    if args.closed_loop:
+        draw_closed_loop(ax, args.closed_loop)
     ax.axhline(1.0, color="grey", linestyle="--", linewidth=1)
     ax.axvline(0.1, color="grey", linestyle="--", linewidth=1)
     ax.set_xscale("log")
     ax.set_yscale("log")
     ax.set_xlabel("RMS nodal error against the reference [mm]")
     ax.set_ylabel("real-time factor [simulated s / wall s]")
-    ax.set_title("Default tongue, SG 3 N 120 ms + 200 ms relaxation (mooney_rivlin5 reference)")
+    title = "Default tongue, SG 3 N 120 ms + 200 ms relaxation (mooney_rivlin5 reference)"
+    if args.closed_loop:
+        title += "\nand closed loops (stars), each against its own reference run"
+    ax.set_title(title, fontsize=10)
     ax.grid(True, which="both", alpha=0.3)
     ax.legend(fontsize=8, loc="best")
     fig.tight_layout()
-    fig.savefig(sys.argv[2], dpi=120)
+    fig.savefig(args.png, dpi=120)
 
 
 if __name__ == "__main__":

@@ -1,4 +1,5 @@
-"""plot_rtf_error.py draws a PNG from rtf_error_benchmark's CSV and rejects a CSV it cannot use.
+"""plot_rtf_error.py draws a PNG from rtf_error_benchmark's CSV (with closed_loop_benchmark's
+beside it, or not) and rejects a CSV it cannot use.
 
 Usage: test_plot_rtf_error.py SCRIPT
 """
@@ -16,6 +17,10 @@ ROWS = [
     "4,default,reuse,neo_hookean,1,80,290,4,0.53,0.6,0.8,0.141,0.27,1.14\n",
     "2,default,reuse,exponential,1,160,450,5,1.0,0.3,0.5,0.0767,0.13,0.36\n",
 ]
+CLOSED_LOOP = ("scenario,threads,rtf,physics_ms,server_ms,rms_mm\n"
+               "ai,1,2.4,1.3,1.5,0.317\n"
+               "ai,2,2.3,1.4,1.6,0.317\n"
+               "ku,1,2.6,1.2,1.3,nan\n")
 
 
 def run(script, *args):
@@ -34,10 +39,25 @@ def main():
             assert f.read(8) == b"\x89PNG\r\n\x1a\n", "not a PNG"
         assert os.path.getsize(png_path) > 10000, "suspiciously small picture"
 
+        closed = os.path.join(d, "closed.csv")
+        with open(closed, "w") as f:
+            f.write(CLOSED_LOOP)
+        both = os.path.join(d, "both.png")
+        result = run(script, csv_path, both, "--closed-loop", closed)
+        assert result.returncode == 0, result.stderr
+        with open(both, "rb") as f:
+            assert f.read(8) == b"\x89PNG\r\n\x1a\n", "not a PNG"
+        # The star and its label change the picture.
+        with open(png_path, "rb") as a, open(both, "rb") as b:
+            assert a.read() != b.read(), "the closed-loop rows were not drawn"
+
         bad = os.path.join(d, "bad.csv")
         with open(bad, "w") as f:
             f.write("dt_ms,rtf\n4,0.9\n")
         result = run(script, bad, os.path.join(d, "bad.png"))
+        assert result.returncode != 0
+        assert "bad.csv" in result.stderr and "missing columns" in result.stderr, result.stderr
+        result = run(script, csv_path, os.path.join(d, "bad2.png"), "--closed-loop", bad)
         assert result.returncode != 0
         assert "bad.csv" in result.stderr and "missing columns" in result.stderr, result.stderr
 
