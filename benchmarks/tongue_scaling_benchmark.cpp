@@ -6,7 +6,10 @@
 // gravity, SG 3 N, dt = 4 ms, the scene's default solver settings). Each mesh is settled, then
 // --steps dynamic steps of SG 3 N are timed (cost per step, wall), and the parts are timed at the
 // settled state: residual alone, residual + tangent, numeric factorization and one solve
-// (medians of --reps). Also a step at rest (no muscle active) for the rest cost.
+// (medians of --reps), and on a line of their own the solid's element pass, the fibre forces,
+// one product with M in compressed columns and one in node blocks, and one solve with the
+// factor in single precision with its difference from the double one. Also a step at rest (no
+// muscle active) for the rest cost.
 // Times are the thread's CPU time on 1 thread (robust on a shared machine), wall time otherwise
 // or with --wall (to compare 1 and 2 threads on the same clock); the factorization is always wall
 // time (CHOLMOD uses threads of its own).
