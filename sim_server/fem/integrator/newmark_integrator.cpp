@@ -27,15 +27,17 @@ class NewmarkIntegrator::StepProblem : public NonlinearProblem {
         a_n_(dofs_.gather_free(integrator.a_)),
         u_full_(integrator.u_),
         S_(integrator.dynamic_matrix(dt)) {
-    // s and b over all dofs: v_n and a_n are zero at prescribed dofs, so s holds the prescribed
-    // values there, as x does, and the blocks' rows and columns there are zero.
-    const double beta = in_.settings_.newmark.beta, gamma = in_.settings_.newmark.gamma;
-    const double c1 = gamma / (beta * dt_);
-    const Vector a_start = -c0_ * dt_ * in_.v_ - (0.5 / beta - 1.0) * in_.a_;
-    const Vector v_start = in_.v_ + dt_ * ((1.0 - gamma) * in_.a_ + gamma * a_start);
-    shift_full_ = in_.u_ - v_start / c1;
+    // s and b over all dofs: zero velocity and acceleration at prescribed dofs, so s holds the
+    // prescribed values there, as x does, and the blocks' rows and columns there are zero.
+    const double c1 = in_.settings_.newmark.gamma / (in_.settings_.newmark.beta * dt_);
+    const Vector a_start = acceleration(u_n_);
+    const Vector v_start = velocity(a_start);
+    shift_full_ = in_.u_;
+    dofs_.scatter_free(u_n_ - v_start / c1, shift_full_);
+    Vector mass_operand = Vector::Zero(u_full_.size());
+    dofs_.scatter_free(a_start - (c0_ / c1) * v_start, mass_operand);
     b_full_ = Vector::Zero(u_full_.size());
-    in_.mass_blocks_.multiply_add(a_start - (c0_ / c1) * v_start, b_full_);
+    in_.mass_blocks_.multiply_add(mass_operand, b_full_);
   }
 
   std::shared_ptr<const SparsityPattern> pattern() const override {

@@ -21,6 +21,29 @@ struct Layout {
   const float* transposed;
 };
 
+// Supernode k of a layout: columns first .. first + cols - 1 of L, its block (height rows,
+// column-major), the `below` rows under its diagonal block and their indices.
+struct Supernode {
+  int first, cols, height, below;
+  const float* block;
+  const float* l21;  // the rows below the diagonal block, column c at l21 + c height
+  const int* rows_below;
+  const float* upper;  // the diagonal block transposed, column-major cols x cols
+};
+
+inline Supernode supernode(const Layout& f, int k) {
+  Supernode s;
+  s.first = f.super[k];
+  s.cols = f.super[k + 1] - s.first;
+  s.height = f.row_start[k + 1] - f.row_start[k];
+  s.below = s.height - s.cols;
+  s.block = f.values + f.value_start[k];
+  s.l21 = s.block + s.cols;
+  s.rows_below = f.rows + f.row_start[k] + s.cols;
+  s.upper = f.transposed + f.transposed_start[k];
+  return s;
+}
+
 // sum_i a[i] b[i], vectorized as a reduction (OpenMP's simd directive allows the reordering).
 inline float dot(const float* __restrict a, const float* __restrict b, int n) {
   float sum = 0.0f;
@@ -33,37 +56,36 @@ inline float dot(const float* __restrict a, const float* __restrict b, int n) {
 // into `work` by a dense product and scattered into y.
 TONGUE_VECTOR_CLONES void forward(const Layout& f, float* __restrict y, float* __restrict work) {
   for (int k = 0; k < f.num_super; ++k) {
-    const int first = f.super[k], cols = f.super[k + 1] - first;
-    const int height = f.row_start[k + 1] - f.row_start[k], below = height - cols;
-    const float* block = f.values + f.value_start[k];
-    float* __restrict yk = y + first;
-    for (int c = 0; c < cols; ++c) {
-      const float v = yk[c] * f.inverse_diagonal[first + c];
+    const Supernode s = supernode(f, k);
+    float* __restrict yk = y + s.first;
+    for (int c = 0; c < s.cols; ++c) {
+      const float v = yk[c] * f.inverse_diagonal[s.first + c];
       yk[c] = v;
-      const float* __restrict column = block + static_cast<long>(c) * height;
+      const float* __restrict column = s.block + static_cast<long>(c) * s.height;
 #pragma omp simd
-      for (int i = c + 1; i < cols; ++i) yk[i] -= column[i] * v;
+      for (int i = c + 1; i < s.cols; ++i) yk[i] -= column[i] * v;
     }
-    if (below == 0) continue;
+    if (s.below == 0) continue;
     // work = L21 yk, four columns per pass over work.
-    std::fill(work, work + below, 0.0f);
-    const float* __restrict l21 = block + cols;
+    std::fill(work, work + s.below, 0.0f);
     int c = 0;
-    for (; c + 4 <= cols; c += 4) {
-      const float* __restrict c0 = l21 + static_cast<long>(c) * height;
-      const float* __restrict c1 = c0 + height, * __restrict c2 = c1 + height, * __restrict c3 = c2 + height;
+    for (; c + 4 <= s.cols; c += 4) {
+      const float* __restrict c0 = s.l21 + static_cast<long>(c) * s.height;
+      const float* __restrict c1 = c0 + s.height;
+      const float* __restrict c2 = c1 + s.height;
+      const float* __restrict c3 = c2 + s.height;
       const float v0 = yk[c], v1 = yk[c + 1], v2 = yk[c + 2], v3 = yk[c + 3];
 #pragma omp simd
-      for (int i = 0; i < below; ++i) work[i] += c0[i] * v0 + c1[i] * v1 + c2[i] * v2 + c3[i] * v3;
+      for (int i = 0; i < s.below; ++i)
+        work[i] += c0[i] * v0 + c1[i] * v1 + c2[i] * v2 + c3[i] * v3;
     }
-    for (; c < cols; ++c) {
+    for (; c < s.cols; ++c) {
       const float v = yk[c];
-      const float* __restrict column = l21 + static_cast<long>(c) * height;
+      const float* __restrict column = s.l21 + static_cast<long>(c) * s.height;
 #pragma omp simd
-      for (int i = 0; i < below; ++i) work[i] += column[i] * v;
+      for (int i = 0; i < s.below; ++i) work[i] += column[i] * v;
     }
-    const int* rows = f.rows + f.row_start[k] + cols;
-    for (int i = 0; i < below; ++i) y[rows[i]] -= work[i];
+    for (int i = 0; i < s.below; ++i) y[s.rows_below[i]] -= work[i];
   }
 }
 
@@ -71,21 +93,19 @@ TONGUE_VECTOR_CLONES void forward(const Layout& f, float* __restrict y, float* _
 // then the diagonal block's transposed triangle.
 TONGUE_VECTOR_CLONES void backward(const Layout& f, float* __restrict y, float* __restrict work) {
   for (int k = f.num_super - 1; k >= 0; --k) {
-    const int first = f.super[k], cols = f.super[k + 1] - first;
-    const int height = f.row_start[k + 1] - f.row_start[k], below = height - cols;
-    const float* block = f.values + f.value_start[k];
-    float* yk = y + first;
-    const int* rows = f.rows + f.row_start[k] + cols;
-    for (int i = 0; i < below; ++i) work[i] = y[rows[i]];
+    const Supernode s = supernode(f, k);
+    float* __restrict yk = y + s.first;
+    for (int i = 0; i < s.below; ++i) work[i] = y[s.rows_below[i]];
     // yk -= L21^T work, four columns per pass over work.
-    const float* __restrict l21 = block + cols;
     int c = 0;
-    for (; c + 4 <= cols; c += 4) {
-      const float* __restrict c0 = l21 + static_cast<long>(c) * height;
-      const float* __restrict c1 = c0 + height, * __restrict c2 = c1 + height, * __restrict c3 = c2 + height;
+    for (; c + 4 <= s.cols; c += 4) {
+      const float* __restrict c0 = s.l21 + static_cast<long>(c) * s.height;
+      const float* __restrict c1 = c0 + s.height;
+      const float* __restrict c2 = c1 + s.height;
+      const float* __restrict c3 = c2 + s.height;
       float s0 = 0.0f, s1 = 0.0f, s2 = 0.0f, s3 = 0.0f;
 #pragma omp simd reduction(+ : s0, s1, s2, s3)
-      for (int i = 0; i < below; ++i) {
+      for (int i = 0; i < s.below; ++i) {
         s0 += c0[i] * work[i];
         s1 += c1[i] * work[i];
         s2 += c2[i] * work[i];
@@ -96,14 +116,13 @@ TONGUE_VECTOR_CLONES void backward(const Layout& f, float* __restrict y, float* 
       yk[c + 2] -= s2;
       yk[c + 3] -= s3;
     }
-    for (; c < cols; ++c) yk[c] -= dot(l21 + static_cast<long>(c) * height, work, below);
+    for (; c < s.cols; ++c) yk[c] -= dot(s.l21 + static_cast<long>(c) * s.height, work, s.below);
     // The diagonal block's transpose, by columns: U = L11^T stored column-major, so that each
     // solved entry updates the ones above it with one contiguous axpy, as in forward().
-    const float* upper = f.transposed + f.transposed_start[k];
-    for (int c = cols - 1; c >= 0; --c) {
-      const float v = yk[c] * f.inverse_diagonal[first + c];
+    for (int c = s.cols - 1; c >= 0; --c) {
+      const float v = yk[c] * f.inverse_diagonal[s.first + c];
       yk[c] = v;
-      const float* __restrict column = upper + static_cast<long>(c) * cols;
+      const float* __restrict column = s.upper + static_cast<long>(c) * s.cols;
 #pragma omp simd
       for (int i = 0; i < c; ++i) yk[i] -= column[i] * v;
     }
@@ -131,26 +150,24 @@ void SinglePrecisionFactor::assign(const cholmod_factor& factor) {
   perm_.assign(static_cast<const int*>(factor.Perm), static_cast<const int*>(factor.Perm) + n);
   const auto* x = static_cast<const double*>(factor.x);
   values_.assign(x, x + px[num_super]);
+  // Per supernode: 1 / L(j, j) of its columns and its diagonal block transposed (U = L11^T,
+  // column c of U holding row c of L11).
   inverse_diagonal_.resize(n);
+  transposed_start_.assign(num_super + 1, 0);
+  transposed_.clear();
   int widest = 0;
   for (int k = 0; k < num_super; ++k) {
-    const int height = pi[k + 1] - pi[k];
-    widest = std::max(widest, height);
-    for (int c = 0; c < super[k + 1] - super[k]; ++c)
-      inverse_diagonal_[super[k] + c] = static_cast<float>(1.0 / x[px[k] + c * height + c]);
-  }
-  transposed_start_.assign(num_super + 1, 0);
-  for (int k = 0; k < num_super; ++k) {
-    const long cols = super[k + 1] - super[k];
-    transposed_start_[k + 1] = transposed_start_[k] + cols * cols;
-  }
-  transposed_.assign(transposed_start_[num_super], 0.0f);
-  for (int k = 0; k < num_super; ++k) {
     const int cols = super[k + 1] - super[k], height = pi[k + 1] - pi[k];
+    widest = std::max(widest, height);
+    transposed_start_[k + 1] = transposed_start_[k] + static_cast<long>(cols) * cols;
+    transposed_.resize(transposed_start_[k + 1], 0.0f);
     float* upper = transposed_.data() + transposed_start_[k];
-    for (int c = 0; c < cols; ++c)  // column c of U = L11^T ...
-      for (int i = 0; i <= c; ++i)  // ... holds row c of L11
-        upper[static_cast<long>(c) * cols + i] = static_cast<float>(x[px[k] + i * height + c]);
+    const double* block = x + px[k];
+    for (int c = 0; c < cols; ++c) {
+      inverse_diagonal_[super[k] + c] = static_cast<float>(1.0 / block[c * height + c]);
+      for (int i = 0; i <= c; ++i)
+        upper[static_cast<long>(c) * cols + i] = static_cast<float>(block[i * height + c]);
+    }
   }
   y_.resize(n);
   work_.resize(widest);
