@@ -11,6 +11,7 @@ packages=(
   liblcm-lua lua5.2                # controllers/lua: LCM's Lua module is built for Lua 5.2
   libhdf5-dev                      # HDF5 1.10, C and C++
   libyaml-cpp-dev                  # scene files
+  libcgal-dev libassimp-dev        # obstacles: spatial index (AABB tree), OBJ and STL files
   libgtest-dev                     # GoogleTest
   python3 python3-h5py python3-numpy  # reading run logs back in tests and scripts
   python3-matplotlib               # scripts/draw_midsagittal.py, scripts/plot_run.py

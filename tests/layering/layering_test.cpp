@@ -65,7 +65,7 @@ const std::vector<Rule>& rules() {
       {"sim_server/fem",
        {"fem"},
        {"yaml-cpp", "hdf5", "lcm", "tongue_lcm"},
-       "fem/ uses nothing outside fem/ (std, Eigen and system headers only)"},
+       "fem/ uses nothing outside fem/ (std, Eigen, CGAL, Assimp and system headers only)"},
       {"sim_server/model",
        {"common", "fem", "model"},
        {"yaml-cpp", "hdf5", "lcm", "tongue_lcm"},

@@ -1,0 +1,78 @@
+#pragma once
+// A rigid obstacle: a triangle surface that the solid's nodes may not pass. Its triangles'
+// normals (right-hand rule on the vertex order) point to the free side, the side the solid is on.
+// A closed surface (every edge shared by two triangles) bounds a solid with outward normals; an
+// open one (a palate, a wall) is a sheet whose back side counts as inside only where the
+// closest point lies within the sheet, not on its rim.
+//
+// The signed distance phi(x) and its gradient, the outward unit normal n, come from the closest
+// point on the surface, found with an AABB tree (CGAL). The sign of a point whose closest point
+// is an edge or a vertex comes from the angle-weighted pseudo-normal there (Baerentzen & Aanaes
+// 2005, IEEE TVCG 11(3)), which gives the right sign at every feature of a closed, consistently
+// oriented surface.
+#include <Eigen/Geometry>  // cross products, unitOrthogonal
+#include <array>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fem/types.hpp"
+
+namespace tongue::fem {
+
+struct TriangleSurface {
+  std::vector<Vec3> vertices;                 // m
+  std::vector<std::array<int, 3>> triangles;  // vertex indices, counter-clockwise seen from outside
+};
+
+// What the closest point of the surface to x says about x.
+struct SurfacePoint {
+  bool valid = false;          // false: the closest point lies on the rim of an open surface
+  double distance = 0.0;       // signed distance phi [m]: negative inside (behind the surface)
+  Vec3 point = Vec3::Zero();   // closest point on the surface [m]
+  Vec3 normal = Vec3::Zero();  // n = grad phi, unit
+  // phi d(n)/dx: zero where the closest point lies inside a triangle (n is that triangle's
+  // normal), I - n n^T - t t^T on an edge of unit direction t, I - n n^T at a vertex. The
+  // Hessian of phi^2 / 2 is n n^T + this.
+  Mat3 curvature = Mat3::Zero();
+  int triangle = -1;  // the triangle that holds the closest point
+};
+
+class Obstacle {
+ public:
+  // Checks the surface and builds its spatial index. Throws std::invalid_argument when it has no
+  // triangle, an index out of range, a degenerate triangle (area below 1e-12 of the squared
+  // bounding-box diagonal), an edge shared by more than two triangles, two neighbours with
+  // opposite orientations, or, closed, a negative enclosed volume (normals pointing inward).
+  Obstacle(std::string name, TriangleSurface surface);
+  ~Obstacle();
+  Obstacle(const Obstacle&) = delete;
+  Obstacle& operator=(const Obstacle&) = delete;
+
+  const std::string& name() const { return name_; }
+  const TriangleSurface& surface() const { return surface_; }
+  bool closed() const { return closed_; }
+  // Corners of the axis-aligned bounding box [m].
+  const Vec3& box_min() const { return box_min_; }
+  const Vec3& box_max() const { return box_max_; }
+  // Distance from x to the bounding box (0 inside it) [m]: a lower bound of |phi(x)|, for
+  // skipping the tree query of points far away.
+  double box_distance(const Vec3& x) const;
+
+  SurfacePoint closest(const Vec3& x) const;
+
+ private:
+  struct Index;  // the CGAL tree, kept out of this header
+  std::string name_;
+  TriangleSurface surface_;
+  bool closed_ = false;
+  Vec3 box_min_, box_max_;
+  std::vector<Vec3> face_normal_;
+  std::vector<std::array<Vec3, 3>> edge_normal_;  // [triangle][edge opposite vertex k]
+  std::vector<std::array<bool, 3>> rim_edge_;     // edge of one triangle only
+  std::vector<Vec3> vertex_normal_;
+  std::vector<bool> rim_vertex_;
+  std::unique_ptr<Index> index_;
+};
+
+}  // namespace tongue::fem

@@ -1,0 +1,132 @@
+// Closest point, signed distance and normal of obstacles with exact counterparts: a tilted plane
+// (exact to round-off) and a sphere (within the facets' distance from the sphere), the
+// consistent second derivative of phi^2 / 2 by finite differences, and the checks that refuse
+// a surface that is not one.
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "fem/contact/obstacle.hpp"
+#include "surfaces.hpp"
+
+namespace tongue::fem {
+namespace {
+
+TEST(Obstacle, TiltedPlaneGivesTheExactSignedDistance) {
+  const Vec3 c(0.01, -0.02, 0.03), n = Vec3(0.3, -0.4, 0.85).normalized();
+  const Obstacle plane("plane", test::square(c, n, 0.05, 4));
+  EXPECT_FALSE(plane.closed());
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const Vec3 e1 = n.unitOrthogonal(), e2 = n.cross(e1);
+  for (int k = 0; k < 200; ++k) {
+    const Vec3 foot = c + 0.045 * (u(rng) * e1 + u(rng) * e2);  // inside the square
+    const double phi = 0.01 * u(rng);
+    const SurfacePoint s = plane.closest(foot + phi * n);
+    ASSERT_TRUE(s.valid);
+    // Round-off of a 0.05 m geometry: ~1e-17 m per operation, a few dozen operations.
+    EXPECT_NEAR(s.distance, phi, 1e-15);
+    EXPECT_LT((s.point - foot).norm(), 1e-15);
+    EXPECT_LT((s.normal - n).norm(), 1e-14);
+  }
+  // Beyond the rim of an open sheet a point is neither in front of it nor behind it.
+  EXPECT_FALSE(plane.closest(c + 0.06 * e1 - 0.001 * n).valid);
+}
+
+TEST(Obstacle, SphereDistanceIsWithinTheFacetError) {
+  const Vec3 c(0.002, 0.001, -0.003);
+  const double R = 0.02;
+  const Obstacle sphere("sphere", test::icosphere(c, R, 4));
+  EXPECT_TRUE(sphere.closed());
+  // The facets lie between the sphere and the smallest distance of a facet's plane from c: the
+  // polyhedron's distance differs from the sphere's by at most R - that distance.
+  double inner = R;
+  for (const auto& t : sphere.surface().triangles) {
+    const auto& V = sphere.surface().vertices;
+    const Vec3 normal = (V[t[1]] - V[t[0]]).cross(V[t[2]] - V[t[0]]).normalized();
+    inner = std::min(inner, (V[t[0]] - c).dot(normal));
+  }
+  const double facet_error = R - inner;
+  ASSERT_LT(facet_error, 1e-4);  // level 4: 5120 triangles, sagitta ~ h^2 / 8 R
+  std::mt19937 rng(5);
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> radius(0.3 * R, 1.7 * R);
+  for (int k = 0; k < 500; ++k) {
+    const Vec3 direction = Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized();
+    const double r = radius(rng);
+    const SurfacePoint s = sphere.closest(c + r * direction);
+    ASSERT_TRUE(s.valid);
+    EXPECT_LE(std::abs(s.distance - (r - R)), facet_error * (1.0 + 1e-9));
+    // The normal turns by at most a facet's angular size (~1/40 rad at level 4) from radial.
+    if (std::abs(r - R) > 2.0 * facet_error) {
+      EXPECT_GT(s.normal.dot(direction), 0.99);
+    }
+  }
+}
+
+// grad(phi^2 / 2) = phi n and its Jacobian n n^T + curvature, by central differences at points
+// whose closest features are faces, edges and vertices of a coarse closed surface, inside and out.
+TEST(Obstacle, CurvatureIsTheDerivativeOfTheNormal) {
+  const Obstacle sphere("sphere", test::icosphere(Vec3::Zero(), 0.02, 0));
+  std::mt19937 rng(11);
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> radius(0.012, 0.03);
+  const double h = 1e-7;  // m: truncation ~h^2 |phi'''| ~ 1e-14 / 1e-2; round-off ~1e-17 / h
+  int checked = 0;
+  for (int k = 0; k < 300; ++k) {
+    const Vec3 x = radius(rng) * Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized();
+    const SurfacePoint s = sphere.closest(x);
+    const Mat3 hessian = s.normal * s.normal.transpose() + s.curvature;
+    Mat3 fd;
+    bool smooth = true;  // all six points in the same feature region (no kink in between)
+    for (int j = 0; j < 3; ++j) {
+      const SurfacePoint p = sphere.closest(x + h * Vec3::Unit(j));
+      const SurfacePoint m = sphere.closest(x - h * Vec3::Unit(j));
+      smooth = smooth && (p.curvature - s.curvature).norm() < 1e-3 &&
+               (m.curvature - s.curvature).norm() < 1e-3 && p.triangle == m.triangle;
+      fd.col(j) = (p.distance * p.normal - m.distance * m.normal) / (2.0 * h);
+    }
+    if (!smooth) continue;
+    ++checked;
+    // 1e-6: the difference quotient's round-off, 1e-17 m / 1e-7 m, with a margin of 1e4 for
+    // the closest point's own round-off in the tree.
+    EXPECT_LT((fd - hessian).norm(), 1e-6) << "at " << x.transpose();
+  }
+  EXPECT_GT(checked, 200);  // most points lie away from a feature's border
+}
+
+TEST(Obstacle, RefusesWhatIsNotASurface) {
+  const auto message = [](TriangleSurface s) {
+    try {
+      Obstacle o("bad", std::move(s));
+    } catch (const std::invalid_argument& e) {
+      return std::string(e.what());
+    }
+    return std::string("accepted");
+  };
+  TriangleSurface s = test::square(Vec3::Zero(), Vec3::UnitZ(), 0.01);
+  TriangleSurface empty = s;
+  empty.triangles.clear();
+  EXPECT_NE(message(empty).find("no triangles"), std::string::npos);
+  TriangleSurface out_of_range = s;
+  out_of_range.triangles[1][2] = 7;
+  EXPECT_NE(message(out_of_range).find("out of"), std::string::npos);
+  TriangleSurface degenerate = s;
+  degenerate.vertices.push_back(0.5 * (s.vertices[0] + s.vertices[1]));
+  degenerate.triangles.push_back({0, 1, 4});
+  EXPECT_NE(message(degenerate).find("degenerate"), std::string::npos);
+  TriangleSurface flipped = s;
+  std::swap(flipped.triangles[1][0], flipped.triangles[1][1]);
+  EXPECT_NE(message(flipped).find("oriented oppositely"), std::string::npos);
+  TriangleSurface fan = s;
+  fan.vertices.push_back(Vec3(0, 0, 0.01));
+  fan.triangles.push_back({0, 3, 4});
+  EXPECT_NE(message(fan).find("share"), std::string::npos);
+  TriangleSurface inside_out = test::icosphere(Vec3::Zero(), 0.01, 1);
+  for (auto& t : inside_out.triangles) std::swap(t[1], t[2]);
+  EXPECT_NE(message(inside_out).find("inward normals"), std::string::npos);
+  EXPECT_EQ(message(test::icosphere(Vec3::Zero(), 0.01, 1)), "accepted");
+}
+
+}  // namespace
+}  // namespace tongue::fem

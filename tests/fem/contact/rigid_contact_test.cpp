@@ -1,0 +1,198 @@
+// Penalty contact against rigid obstacles: the tangent against finite differences, a contact
+// patch test (a block pressed onto a plane by a uniform pressure) and a block dropped onto a
+// plane under gravity.
+#include "fem/contact/rigid_contact.hpp"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "fem/integrator/newmark_integrator.hpp"
+#include "fem/integrator/static_solver.hpp"
+#include "fem/material/material_factory.hpp"
+#include "fem/mesh/boundary_faces.hpp"
+#include "fem/mesh/box_generator.hpp"
+#include "surfaces.hpp"
+
+namespace tongue::fem {
+namespace {
+
+std::shared_ptr<const Obstacle> obstacle(const std::string& name, TriangleSurface s) {
+  return std::make_shared<const Obstacle>(name, std::move(s));
+}
+
+std::shared_ptr<SolidModel> make_solid(const Mesh& mesh,
+                                       std::vector<PrescribedDof> prescribed = {}) {
+  return std::make_shared<SolidModel>(mesh, make_material("mooney_rivlin5", {}),
+                                      Formulation::mean_dilatation, 1000.0, prescribed);
+}
+
+// -d f / du by central differences against the tangent, with nodes of a box pressed into a
+// coarse sphere (closest points on its faces, edges and vertices) and a tilted plane at once.
+TEST(RigidContact, TangentIsTheDerivativeOfTheForce) {
+  const Mesh mesh = make_box(Vec3(-0.01, -0.01, -0.01), Vec3(0.02, 0.02, 0.02), 2, 2, 2);
+  const auto solid = make_solid(mesh);
+  const RigidContact contact(
+      {obstacle("ball", test::icosphere(Vec3(0.0, 0.0, 0.022), 0.015, 0)),
+       obstacle("wall", test::square(Vec3(-0.008, 0, 0), Vec3(1, 0.2, 0.1), 0.05))},
+      mesh, solid->dofs());
+  std::mt19937 rng(2);
+  std::uniform_real_distribution<double> shake(-0.001, 0.001);
+  Vector u(solid->num_dofs());
+  for (int i = 0; i < u.size(); ++i) u[i] = shake(rng);
+
+  SymmetricMatrix K(solid->pattern());
+  Vector f = Vector::Zero(u.size());
+  contact.add(u, 1.0, f, &K);
+  const ContactReport report = contact.report(u);
+  ASSERT_GE(report.contacts.size(), 6u);  // both obstacles touched
+  const Eigen::MatrixXd dense = K.to_dense();
+  const double h = 1e-8;  // m; forces ~eps phi ~ 1e5 * 1e-3 N: round-off 1e-14 / h
+  double worst = 0.0;
+  for (int j = 0; j < u.size(); ++j) {
+    Vector up = u, um = u, fp = Vector::Zero(u.size()), fm = Vector::Zero(u.size());
+    up[j] += h;
+    um[j] -= h;
+    contact.add(up, 1.0, fp, nullptr);
+    contact.add(um, 1.0, fm, nullptr);
+    const Vector column = -(fp - fm) / (2.0 * h);
+    worst = std::max(worst, (column - dense.col(j)).cwiseAbs().maxCoeff());
+  }
+  // Relative to the largest penalty: truncation is zero inside a feature region (phi n is
+  // affine or quadratic there), round-off ~1e-14 N / 1e-8 m = 1e-6 N/m on entries ~1e4 N/m.
+  const double scale =
+      *std::max_element(contact.node_penalty().begin(), contact.node_penalty().end());
+  EXPECT_LT(worst, 1e-8 * scale);
+}
+
+// A 20 x 20 x 10 mm block on a rigid plane, its top pressed down by a uniform pressure p, sliding
+// freely (symmetry rollers on x = 0 and y = 0): the homogeneous uniaxial state is the exact
+// discrete solution, so every bottom node carries p times its area and sinks p / kappa into the
+// plane, and the contact forces add up to the load.
+TEST(RigidContact, PatchTestCarriesTheLoadWithUniformPressure) {
+  const Mesh mesh = make_box(Vec3::Zero(), Vec3(0.02, 0.02, 0.01), 4, 4, 2);
+  std::vector<PrescribedDof> rollers;
+  for (int n = 0; n < mesh.num_nodes(); ++n) {
+    if (mesh.nodes[n].x() < 1e-9) rollers.push_back({n, 0, 0.0});
+    if (mesh.nodes[n].y() < 1e-9) rollers.push_back({n, 1, 0.0});
+  }
+  const auto solid = make_solid(mesh, rollers);
+  const double p = 5e3;       // Pa
+  const double start = 1e-6;  // m: the plane starts 1 um into the block, so that contact
+                              // holds the block from the first iteration
+  ContactSettings settings;
+  settings.penalty = 1e9;  // Pa/m: p / kappa = 5 um
+  std::vector<Quad4> top, bottom;
+  for (const Quad4& face : boundary_faces(mesh)) {
+    bool at_top = true, at_bottom = true;
+    for (int n : face) {
+      at_top = at_top && mesh.nodes[n].z() > 0.01 - 1e-9;
+      at_bottom = at_bottom && mesh.nodes[n].z() < 1e-9;
+    }
+    if (at_top) top.push_back(face);
+    if (at_bottom) bottom.push_back(face);
+  }
+  // The bottom is the contact surface: the sides' area does not bear on the plane.
+  auto contact = std::make_shared<RigidContact>(
+      std::vector{obstacle("floor", test::square(Vec3(0.01, 0.01, start), Vec3::UnitZ(), 0.05))},
+      mesh, solid->dofs(), settings, bottom);
+  Vector load = Vector::Zero(solid->num_dofs());
+  for (const Quad4& face : top) {
+    const double quarter = (mesh.nodes[face[2]] - mesh.nodes[face[0]])
+                               .cross(mesh.nodes[face[3]] - mesh.nodes[face[1]])
+                               .norm() /
+                           8.0;
+    for (int n : face) load[3 * n + 2] -= p * quarter;
+  }
+  MechanicalSystem system(solid);
+  system.add_load(std::make_shared<ConstantForce>("pressure", load));
+  system.add_load(contact);
+  StaticSettings static_settings;
+  static_settings.newton.residual_rtol = 1e-12;
+  static_settings.newton.residual_atol = 1e-13;  // N; the load is 2 N
+  Vector u = Vector::Zero(solid->num_dofs());
+  const StaticReport solved = solve_static(system, u, static_settings);
+  ASSERT_TRUE(solved.converged) << solved.message;
+
+  const ContactReport report = contact->report(u);
+  ASSERT_EQ(report.contacts.size(), 25u);  // the 5 x 5 bottom nodes
+  const double total = p * 0.02 * 0.02;
+  // The force balance holds to the residual tolerance (1e-13 N on 2 N); the pressure and the
+  // penetration of each node to that over the smallest nodal area (a corner's 6 mm^2).
+  EXPECT_NEAR(-report.obstacle_force[0].z(), total, 1e-10 * total);
+  for (const NodeContact& c : report.contacts) {
+    const int i =
+        static_cast<int>(std::find(contact->nodes().begin(), contact->nodes().end(), c.node) -
+                         contact->nodes().begin());
+    const double area = contact->node_penalty()[i] / settings.penalty;
+    EXPECT_NEAR(c.force.z() / area, p, 1e-8 * p);
+    EXPECT_NEAR(-c.distance, p / settings.penalty, 1e-8 * p / settings.penalty);
+    EXPECT_NEAR(c.force.x(), 0.0, 1e-12);
+  }
+  EXPECT_NEAR(report.max_penetration, p / settings.penalty, 1e-8 * p / settings.penalty);
+}
+
+// A 10 mm cube dropped 5 mm onto a plane under gravity, mass-proportional damping: the energy
+// (kinetic + strain + contact - work of gravity) never grows, no node passes through the plane,
+// and the block ends at rest on it, the plane carrying its weight.
+TEST(RigidContact, DroppedBlockComesToRestOnThePlane) {
+  const Mesh mesh = make_box(Vec3::Zero(), Vec3(0.01, 0.01, 0.01), 2, 2, 2);
+  const auto solid = make_solid(mesh);
+  const double drop = 0.005;
+  auto contact = std::make_shared<RigidContact>(
+      std::vector{obstacle("floor", test::square(Vec3(0.005, 0.005, -drop), Vec3::UnitZ(), 0.05))},
+      mesh, solid->dofs());
+  const Vec3 g(0, 0, -9.81);
+  const Vector weight = solid->body_force(g);
+  MechanicalSystem system(solid);
+  system.add_load(std::make_shared<ConstantForce>("gravity", weight));
+  system.add_load(contact);
+  DynamicSettings settings;
+  settings.damping.mass_coefficient = 40.0;  // 1/s: the motion decays as exp(-20 t)
+  // Newmark with numerical dissipation, gamma = 3/4 and beta = (gamma + 1/2)^2 / 4 (Hughes
+  // 2000, sec. 9.1): the average-acceleration rule (gamma = 1/2) gains energy whenever a node
+  // leaves contact within a step, its trapezoid of the contact force over the step counting
+  // eps delta (phi_{n+1}) / 2 of work the spring never did; at this penalty (omega dt ~ 12)
+  // the block then bounces higher and higher.
+  settings.newmark.gamma = 0.75;
+  settings.newmark.beta = 0.390625;
+  settings.newton.residual_rtol = 1e-10;
+  settings.newton.residual_atol = 1e-12;
+  NewmarkIntegrator integrator(system, settings);
+  const int n = solid->num_dofs();
+  integrator.initialize(Vector::Zero(n), Vector::Zero(n));
+  const SymmetricMatrix M = solid->mass_matrix(false);
+
+  const auto energy = [&]() {
+    const Vector& u = integrator.displacement();
+    const Vector& v = integrator.velocity();
+    Vector f = Vector::Zero(n);
+    double strain = 0.0;
+    solid->assemble(u, f, nullptr, &strain);
+    return 0.5 * v.dot(M.multiply(v)) + strain + contact->report(u).energy - weight.dot(u);
+  };
+  double last = energy(), deepest = 0.0;
+  const double dt = 1e-3;
+  for (int step = 0; step < 400; ++step) {
+    const StepReport r = integrator.step(dt);
+    ASSERT_TRUE(r.converged) << "step " << step << ": " << r.message;
+    const double e = energy();
+    // Damping only takes energy out; 1e-9 J allows the solver's tolerance (1e-12 N residual on
+    // displacements of ~1e-2 m) and the round-off of sums of ~5e-5 J.
+    EXPECT_LE(e, last + 1e-9) << "step " << step;
+    last = e;
+    deepest = std::max(deepest, contact->report(integrator.displacement()).max_penetration);
+  }
+  // The impact, 0.31 m/s onto a 1e9 Pa/m x 1 cm^2 penalty, penetrates ~30 um; never tunnels.
+  EXPECT_LT(deepest, 1e-4);
+  EXPECT_LT(integrator.velocity().cwiseAbs().maxCoeff(), 1e-4);  // m/s, after 0.4 s
+  const ContactReport rest = contact->report(integrator.displacement());
+  const double mg = solid->total_mass() * 9.81;
+  // At rest the plane carries the weight; what is left is the damping force alpha M v of the
+  // residual motion (< 1e-4 m/s x 40 1/s x 1e-3 kg = 4e-6 N on 1e-2 N).
+  EXPECT_NEAR(-rest.obstacle_force[0].z(), mg, 1e-3 * mg);
+  EXPECT_GT(rest.contacts.size(), 0u);
+}
+
+}  // namespace
+}  // namespace tongue::fem
