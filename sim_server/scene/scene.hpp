@@ -70,6 +70,21 @@
 //         # list sets its level. Muscles without an active entry are at 0. A dynamic step to
 //         # t_{n+1} uses the levels at t_{n+1}, the initial state (settled or not) has every
 //         # muscle off; a static analysis uses the levels at t = 0.
+//   obstacles: vocal_tract         # optional; rigid surfaces the solid's boundary nodes may not
+//                                  # pass (frictionless penalty contact, fem/contact/). The
+//                                  # built-in vocal tract (hard_palate, upper_teeth, velum,
+//                                  # pharyngeal_wall; model/vocal_tract.hpp), only with mesh:
+//                                  # tongue; or a list of vocal_tract and files:
+//     - vocal_tract
+//     - {name: plate, file: plate.stl, length_scale: 0.001, rotate: [0, 0, 90],
+//        translate: [0, 0.06, 0]}
+//         # OBJ or STL triangles, path relative to the scene file, normals (right-hand rule)
+//         # toward the solid; length_scale (default 1) turns file units into metres, then
+//         # rotate (degrees about x, then y, then z; default none) and translate (m). No node of
+//         # the solid may start behind an obstacle.
+//   contact: {penalty: 1.0e9, search_depth: 0.005}   # optional; needs obstacles. penalty
+//         # [Pa/m]: contact pressure per metre of penetration (fem::ContactSettings);
+//         # search_depth [m]: points deeper behind a surface are not in contact with it
 //   analysis:                      # required
 //     type: dynamic                # required: static | dynamic
 //     settle: false                # dynamic: start from static equilibrium under the loads
@@ -103,6 +118,7 @@
 #include <variant>
 #include <vector>
 
+#include "fem/contact/rigid_contact.hpp"
 #include "fem/element/hex8_element.hpp"
 #include "fem/integrator/newmark_integrator.hpp"
 #include "fem/solver/newton_solver.hpp"
@@ -191,6 +207,22 @@ struct ActivationSpec {
   int line = 0;                 // 1-based line of the entry in the file, for errors; 0: unknown
 };
 
+// A rigid obstacle read from an OBJ or STL file, placed by scaling, rotating, translating.
+struct ObstacleFileSpec {
+  std::string name;
+  std::string path;                          // resolved against the scene file's directory
+  double length_scale = 1.0;                 // file length unit in metres
+  fem::Vec3 rotate_deg = fem::Vec3::Zero();  // degrees about x, then y, then z
+  fem::Vec3 translate = fem::Vec3::Zero();   // m
+};
+
+struct ObstaclesSpec {
+  bool vocal_tract = false;  // the built-in vocal tract, first
+  std::vector<ObstacleFileSpec> files;
+  fem::ContactSettings contact;
+  bool empty() const { return !vocal_tract && files.empty(); }
+};
+
 enum class AnalysisType { static_equilibrium, dynamic };
 
 struct AnalysisSpec {
@@ -228,6 +260,7 @@ struct Scene {
   double muscle_stiffening = model::kContractedToRestStiffness;
   // Active force-length relation of every fibre segment (model/force_length.hpp).
   model::ActiveForceLength muscle_force_length;
+  ObstaclesSpec obstacles;
   AnalysisSpec analysis;
   // The solver block over fem::NewtonSettings' defaults, and the keys it gave: a dynamic
   // analysis takes its own defaults for the keys not given (dynamic_newton_settings in

@@ -11,10 +11,12 @@
 #include "common/number_text.hpp"
 #include "fem/assembly/loads.hpp"
 #include "fem/assembly/surface_load.hpp"
+#include "fem/contact/obstacle_file.hpp"
 #include "fem/material/material_factory.hpp"
 #include "fem/mesh/ansys_reader.hpp"
 #include "fem/mesh/box_generator.hpp"
 #include "model/default_tongue.hpp"
+#include "model/vocal_tract.hpp"
 #include "scene/scene_reader.hpp"
 
 namespace tongue::scene {
@@ -95,6 +97,10 @@ class Builder {
       }
       built.activations = ActivationSchedule(scene_, built.muscles->muscles());
     }
+    if (!scene_.obstacles.empty()) {
+      built.contact = make_contact(*built.solid);
+      built.system->add_load(built.contact);
+    }
 
     const AnalysisSpec& a = scene_.analysis;
     built.static_settings.load_steps = a.load_steps;
@@ -111,6 +117,56 @@ class Builder {
  private:
   [[noreturn]] void fail(const std::string& path, const std::string& reason) const {
     throw SceneError(scene_.source, path, reason);
+  }
+
+  // The obstacles (the vocal tract's, then the files' in order) and the contact with them.
+  std::shared_ptr<fem::RigidContact> make_contact(const fem::SolidModel& solid) const {
+    std::vector<std::shared_ptr<const fem::Obstacle>> obstacles;
+    if (scene_.obstacles.vocal_tract) obstacles = model::make_vocal_tract();
+    for (const ObstacleFileSpec& f : scene_.obstacles.files) {
+      const std::string path = "obstacles (" + f.name + ")";
+      for (const auto& o : obstacles)
+        if (o->name() == f.name) fail(path, "obstacle '" + f.name + "' is defined twice");
+      fem::TriangleSurface surface;
+      try {
+        surface = fem::read_triangle_surface(f.path);
+      } catch (const std::runtime_error& e) {
+        fail(path, e.what());
+      }
+      const double deg = std::acos(-1.0) / 180.0;
+      const fem::Mat3 rotation = (Eigen::AngleAxisd(f.rotate_deg.z() * deg, fem::Vec3::UnitZ()) *
+                                  Eigen::AngleAxisd(f.rotate_deg.y() * deg, fem::Vec3::UnitY()) *
+                                  Eigen::AngleAxisd(f.rotate_deg.x() * deg, fem::Vec3::UnitX()))
+                                     .toRotationMatrix();
+      for (fem::Vec3& v : surface.vertices) v = rotation * (f.length_scale * v) + f.translate;
+      try {
+        obstacles.push_back(std::make_shared<const fem::Obstacle>(f.name, std::move(surface)));
+      } catch (const std::invalid_argument& e) {
+        fail(path, "obstacle file " + f.path + ": " + e.what());
+      }
+    }
+    auto contact = std::make_shared<fem::RigidContact>(obstacles, solid.mesh(), solid.dofs(),
+                                                       scene_.obstacles.contact);
+    // A node that starts behind a surface would be thrown out of it (or, deeper than the
+    // search depth, ignored): most often an obstacle misplaced or with its normals reversed.
+    for (const auto& o : obstacles) {
+      int behind = 0, deepest = -1;
+      double depth = 0.0;
+      for (int n : contact->nodes()) {
+        const fem::SurfacePoint p = o->closest(solid.mesh().nodes[n]);
+        if (!p.valid || !(p.distance < 0.0)) continue;
+        ++behind;
+        if (-p.distance > depth) depth = -p.distance, deepest = n;
+      }
+      if (behind > 0) {
+        fail("obstacles (" + o->name() + ")",
+             std::to_string(behind) + " nodes of the mesh start behind obstacle '" + o->name() +
+                 "' (deepest: node index " + std::to_string(deepest) + ", " +
+                 common::number_text(depth * 1e3) +
+                 " mm): move it, or reverse its triangles if its normals face away from the solid");
+      }
+    }
+    return contact;
   }
 
   fem::Mesh make_mesh(std::map<long, int>& id_map, std::map<long, int>& element_id_map,

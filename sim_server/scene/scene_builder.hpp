@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "fem/assembly/solid_model.hpp"
+#include "fem/contact/rigid_contact.hpp"
 #include "fem/integrator/mechanical_system.hpp"
 #include "fem/integrator/newmark_integrator.hpp"
 #include "fem/integrator/static_solver.hpp"
@@ -23,11 +24,13 @@ struct BuiltScene {
   std::shared_ptr<const fem::SolidModel> solid;
   // Loads: "gravity" when the scene has gravity, then one per entry of `loads`, then "muscles"
   // when the scene has muscles, then "active muscle stiffening" unless muscle_stiffening is 1,
-  // in that order.
+  // then "contact" when the scene has obstacles, in that order.
   std::unique_ptr<fem::MechanicalSystem> system;
   // The muscles' forces, also among the system's loads; null without muscles. All activations
   // start at 0: the caller sets them from `activations`.
   std::shared_ptr<model::MuscleForces> muscles;
+  // The contact with the scene's obstacles, also among the system's loads; null without.
+  std::shared_ptr<fem::RigidContact> contact;
   ActivationSchedule activations;              // resolved against `muscles` (empty without muscles)
   fem::StaticSettings static_settings;         // for a static analysis and for settling
   fem::DynamicSettings dynamic_settings;       // for a dynamic analysis
@@ -40,8 +43,10 @@ struct BuiltScene {
 // built mesh reveals: a set that selects no nodes, a node or element id not in the mesh, a
 // "mat_<n>" set the file lacks, a node given two different prescribed displacements in one
 // component, a load set with no boundary face, a mesh that cannot be read or has an inverted
-// element, a muscle that tongue::model::validate rejects or whose fibre has a zero-length
-// segment, and activations naming unknown muscles or groups or asking more than max_force.
+// element, an obstacle file that cannot be read or is not a surface, an obstacle that a node of
+// the solid starts behind, a muscle that tongue::model::validate rejects or whose fibre has a
+// zero-length segment, and activations naming unknown muscles or groups or asking more than
+// max_force.
 BuiltScene build_scene(const Scene& scene);
 
 // The Newton settings of the scene's dynamic steps: its solver block, with these defaults for

@@ -96,8 +96,8 @@ class Parser : private common::YamlReader {
     expect_map(root, "(top level)");
     check_keys(root, "",
                {"mesh", "material", "node_sets", "constraints", "gravity", "loads", "damping",
-                "muscles", "muscle_stiffening", "muscle_force_length", "activations", "analysis",
-                "solver", "output"});
+                "muscles", "muscle_stiffening", "muscle_force_length", "activations", "obstacles",
+                "contact", "analysis", "solver", "output"});
     Scene scene;
     scene.source = source();
     scene.text = file_text();
@@ -127,6 +127,11 @@ class Parser : private common::YamlReader {
         fail("muscle_force_length", "needs muscles", n);
       }
       scene.muscle_force_length = force_length(n, "muscle_force_length");
+    }
+    if (const auto n = root["obstacles"]; present(n)) read_obstacles(n, "obstacles", scene);
+    if (const auto n = root["contact"]; present(n)) {
+      if (scene.obstacles.empty()) fail("contact", "needs obstacles", n);
+      read_contact(n, "contact", scene.obstacles.contact);
     }
     read_analysis(required(root, "", "analysis"), "analysis", scene.analysis);
     if (const auto n = root["solver"]; present(n))
@@ -221,19 +226,22 @@ class Parser : private common::YamlReader {
     expect_map(n, path);
     check_keys(n, path, {"nodes", "elements", "length_scale"});
     AnsysMeshSpec ansys;
-    ansys.nodes_path = mesh_file(required(n, path, "nodes"), child_path(path, "nodes"));
-    ansys.elements_path = mesh_file(required(n, path, "elements"), child_path(path, "elements"));
+    ansys.nodes_path = existing_file(required(n, path, "nodes"), child_path(path, "nodes"), "mesh");
+    ansys.elements_path =
+        existing_file(required(n, path, "elements"), child_path(path, "elements"), "mesh");
     if (const auto s = n["length_scale"]; present(s))
       ansys.length_scale = positive(s, child_path(path, "length_scale"), "m");
     return ansys;
   }
 
-  // The path resolved against the scene's directory; it must name an existing file.
-  std::string mesh_file(const YAML::Node& n, const std::string& path) const {
+  // The path resolved against the scene's directory; it must name an existing file (`what`:
+  // "mesh", "obstacle").
+  std::string existing_file(const YAML::Node& n, const std::string& path,
+                            const std::string& what) const {
     fs::path p = text(n, path);
     if (p.is_relative() && !base_dir_.empty()) p = fs::path(base_dir_) / p;
     std::error_code ec;
-    if (!fs::is_regular_file(p, ec)) fail(path, "mesh file not found: " + p.string(), n);
+    if (!fs::is_regular_file(p, ec)) fail(path, what + " file not found: " + p.string(), n);
     return p.string();
   }
 
@@ -640,6 +648,55 @@ class Parser : private common::YamlReader {
       s.reform_ratio = positive(v, p, "");
       if (s.reform_ratio > 1.0) fail(p, "must not exceed 1, got " + number_text(s.reform_ratio), v);
     });
+  }
+
+  void read_obstacles(const YAML::Node& n, const std::string& path, Scene& scene) const {
+    const auto vocal_tract = [&](const YAML::Node& v, const std::string& v_path) {
+      if (v.Scalar() != "vocal_tract")
+        fail(v_path, "expected 'vocal_tract' or an obstacle file, got '" + v.Scalar() + "'", v);
+      if (!std::holds_alternative<TongueMeshSpec>(scene.mesh))
+        fail(v_path, "the built-in vocal tract fits the built-in tongue (mesh: {tongue: {}})", v);
+      if (scene.obstacles.vocal_tract) fail(v_path, "the vocal tract is given twice", v);
+      scene.obstacles.vocal_tract = true;
+    };
+    if (n.IsScalar()) return vocal_tract(n, path);
+    if (!n.IsSequence() || n.size() == 0)
+      fail(path, "expected 'vocal_tract' or a list of 'vocal_tract' and obstacle files", n);
+    for (std::size_t i = 0; i < n.size(); ++i) {
+      const YAML::Node o = n[i];
+      const std::string o_path = index_path(path, i);
+      if (o.IsScalar()) {
+        vocal_tract(o, o_path);
+        continue;
+      }
+      expect_map(o, o_path);
+      check_keys(o, o_path, {"name", "file", "length_scale", "rotate", "translate"});
+      ObstacleFileSpec spec;
+      const YAML::Node name_node = required(o, o_path, "name");
+      spec.name = name(name_node, child_path(o_path, "name"));
+      for (const auto& other : scene.obstacles.files)
+        if (other.name == spec.name)
+          fail(child_path(o_path, "name"), "obstacle '" + spec.name + "' is defined twice",
+               name_node);
+      spec.path =
+          existing_file(required(o, o_path, "file"), child_path(o_path, "file"), "obstacle");
+      if (const auto v = o["length_scale"]; present(v))
+        spec.length_scale = positive(v, child_path(o_path, "length_scale"), "");
+      if (const auto v = o["rotate"]; present(v))
+        spec.rotate_deg = vec3(v, child_path(o_path, "rotate"));
+      if (const auto v = o["translate"]; present(v))
+        spec.translate = vec3(v, child_path(o_path, "translate"));
+      scene.obstacles.files.push_back(std::move(spec));
+    }
+  }
+
+  void read_contact(const YAML::Node& n, const std::string& path, fem::ContactSettings& c) const {
+    expect_map(n, path);
+    check_keys(n, path, {"penalty", "search_depth"});
+    if (const auto v = n["penalty"]; present(v))
+      c.penalty = positive(v, child_path(path, "penalty"), "Pa/m");
+    if (const auto v = n["search_depth"]; present(v))
+      c.search_depth = positive(v, child_path(path, "search_depth"), "m");
   }
 
   void read_output(const YAML::Node& n, const std::string& path, OutputSpec& o) const {

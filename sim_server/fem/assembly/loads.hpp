@@ -9,6 +9,16 @@
 
 namespace tongue::fem {
 
+// A spring k v v^T on the three dofs of one node: stiffness k [N/m] along the unit direction v.
+// With gap > 0 it is not engaged yet: it engages once the node has moved `gap` [m] against v
+// (a node that far in front of an obstacle).
+struct NodeSpring {
+  int node = 0;
+  Vec3 direction = Vec3::Zero();
+  double stiffness = 0.0;
+  double gap = 0.0;
+};
+
 class ForceContribution {
  public:
   virtual ~ForceContribution() = default;
@@ -26,6 +36,12 @@ class ForceContribution {
   virtual bool add_element_weights(double /*load_factor*/, std::vector<double>& /*weights*/) const {
     return false;
   }
+  // The node springs among this load's tangent at u that come and go as u changes (contact
+  // engaging and releasing), added to `springs`, and those about to engage (gap > 0). A solver
+  // that reuses a factorization corrects it for the springs that changed since it was formed
+  // instead of forming it again, and engages those a correction would carry past their gap.
+  // Default: none.
+  virtual void add_springs(const Vector& /*u*/, std::vector<NodeSpring>& /*springs*/) const {}
 };
 
 // A dead load: a fixed vector of nodal forces (gravity, point loads, tractions on the reference

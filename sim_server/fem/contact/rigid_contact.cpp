@@ -11,6 +11,8 @@ RigidContact::RigidContact(std::vector<std::shared_ptr<const Obstacle>> obstacle
   if (obstacles_.empty()) throw std::invalid_argument("contact: no obstacles");
   if (!(settings_.penalty > 0.0))
     throw std::invalid_argument("contact: penalty must be positive [Pa/m]");
+  if (!(settings_.smoothing > 0.0))
+    throw std::invalid_argument("contact: smoothing must be positive [m]");
   if (!(settings_.search_depth > 0.0))
     throw std::invalid_argument("contact: search_depth must be positive [m]");
 
@@ -35,43 +37,87 @@ RigidContact::RigidContact(std::vector<std::shared_ptr<const Obstacle>> obstacle
 
 template <typename Visit>
 void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
+  const std::lock_guard lock(probes_mutex_);
+  const int num_obstacles = static_cast<int>(obstacles_.size());
+  probes_.resize(nodes_.size() * obstacles_.size());
+  const double depth = settings_.search_depth;
   for (int i = 0; i < static_cast<int>(nodes_.size()); ++i) {
     const Vec3 x = rest_[i] + u.segment<3>(3 * nodes_[i]);
-    for (int o = 0; o < static_cast<int>(obstacles_.size()); ++o) {
+    for (int o = 0; o < num_obstacles; ++o) {
+      Probe& probe = probes_[i * num_obstacles + o];
+      if ((x - probe.at).norm() < probe.reach) continue;
       const Obstacle& obstacle = *obstacles_[o];
+      probe.at = x;
+      probe.in_front = false;
       // Outside the bounding box a point is outside a closed obstacle, and at least that far
-      // from any surface: skip the tree when that settles it.
+      // from any surface, so out of reach of an open one while farther than the search depth.
       const double box = obstacle.box_distance(x);
-      if (box > 0.0 && (obstacle.closed() || box >= settings_.search_depth)) continue;
+      probe.reach = obstacle.closed() ? box : box - depth;
+      if (probe.reach > 0.0) continue;
       const SurfacePoint s = obstacle.closest(x);
-      if (!s.valid || !(s.distance < 0.0) || s.distance <= -settings_.search_depth) continue;
-      visit(i, o, s);
+      if (!s.valid) {  // beyond an open sheet's rim: in reach once within the depth of it
+        probe.reach = (x - s.point).norm() - depth;
+      } else if (s.distance >= 0.0) {  // in front
+        probe.reach = s.distance;
+        probe.in_front = true;
+        probe.phi = s.distance;
+        probe.normal = s.normal;
+      } else {
+        probe.reach = s.distance > -depth ? -1.0 : -s.distance - depth;
+        if (s.distance > -depth) visit(i, o, s);
+      }
     }
   }
+}
+
+RigidContact::Penalty RigidContact::penalty(int i, double p) const {
+  const double eps = node_penalty_[i], w = settings_.smoothing;
+  if (p <= w) return {eps * p * p * p / (6.0 * w), eps * p * p / (2.0 * w), eps * p / w};
+  return {eps * (p * p / 2.0 - w * p / 2.0 + w * w / 6.0), eps * (p - w / 2.0), eps};
 }
 
 void RigidContact::add(const Vector& u, double /*load_factor*/, Vector& force,
                        SymmetricMatrix* stiffness) const {
   for_each_contact(u, [&](int i, int, const SurfacePoint& s) {
-    const double eps = node_penalty_[i];
-    force.segment<3>(3 * nodes_[i]) -= (eps * s.distance) * s.normal;
+    const double p = -s.distance;
+    const Penalty psi = penalty(i, p);
+    force.segment<3>(3 * nodes_[i]) += psi.force * s.normal;
     if (stiffness != nullptr) {
-      const Mat3 block = eps * (s.normal * s.normal.transpose() + s.curvature);
+      const Mat3 block =
+          psi.stiffness * s.normal * s.normal.transpose() + (psi.force / p) * s.curvature;
       add_node_block(*stiffness, dofs_, nodes_[i], nodes_[i], block);
     }
   });
+}
+
+void RigidContact::add_springs(const Vector& u, std::vector<NodeSpring>& springs) const {
+  for_each_contact(u, [&](int i, int, const SurfacePoint& s) {
+    springs.push_back({nodes_[i], s.normal, penalty(i, -s.distance).stiffness, 0.0});
+  });
+  const std::lock_guard lock(probes_mutex_);
+  const int num_obstacles = static_cast<int>(obstacles_.size());
+  for (int i = 0; i < static_cast<int>(nodes_.size()); ++i) {
+    const Vec3 x = rest_[i] + u.segment<3>(3 * nodes_[i]);
+    for (int o = 0; o < num_obstacles; ++o) {
+      const Probe& probe = probes_[i * num_obstacles + o];
+      if (!probe.in_front) continue;
+      const double gap = probe.phi + probe.normal.dot(x - probe.at);
+      if (gap > 0.0 && gap < kCandidateGap)
+        springs.push_back({nodes_[i], probe.normal, node_penalty_[i], gap});
+    }
+  }
 }
 
 ContactReport RigidContact::report(const Vector& u) const {
   ContactReport r;
   r.obstacle_force.assign(obstacles_.size(), Vec3::Zero());
   for_each_contact(u, [&](int i, int o, const SurfacePoint& s) {
-    const double eps = node_penalty_[i];
-    const Vec3 f = (-eps * s.distance) * s.normal;
+    const Penalty psi = penalty(i, -s.distance);
+    const Vec3 f = psi.force * s.normal;
     r.contacts.push_back({nodes_[i], o, s.distance, f, s.point});
     r.obstacle_force[o] -= f;
     r.max_penetration = std::max(r.max_penetration, -s.distance);
-    r.energy += 0.5 * eps * s.distance * s.distance;
+    r.energy += psi.energy;
   });
   return r;
 }

@@ -1,19 +1,24 @@
 #pragma once
 // Frictionless contact of a solid's surface nodes against rigid obstacles, by a penalty on the
 // penetration (Wriggers 2006, Computational Contact Mechanics, sec. 6.3; node-to-surface with a
-// rigid master surface). A surface node i at signed distance phi < 0 from an obstacle is pushed
-// out along the obstacle's normal n by
-//     f_i = -eps_i phi n,     eps_i = kappa A_i,
-// the gradient of the energy eps_i phi^2 / 2, with A_i the node's share of the contact surface's
-// area in the reference state (a quarter of each of its faces the node is a corner of; the
-// surface is the solid's whole boundary unless given, as FEBio's contact surfaces are) and kappa
-// the penalty [Pa/m], the contact pressure per metre of penetration: a pressure p then penetrates
-// p / kappa. The energy's Hessian eps_i (n n^T + phi dn/dx) is the consistent tangent; the
-// second term is zero where the closest point lies inside a triangle and accounts for the
-// normal turning around an edge or a vertex. A node touching several obstacles gets the sum.
+// rigid master surface). A surface node i at signed distance phi from an obstacle, penetration
+// p = -phi > 0, is pushed out along the obstacle's normal n by the force psi'(p) n, the
+// derivative of the energy psi(p) whose stiffness psi'' grows linearly from 0 to eps_i over the
+// first w of penetration and stays eps_i beyond:
+//     psi''(p) = eps_i min(p / w, 1),   eps_i = kappa A_i,
+// with A_i the node's share of the contact surface's area in the reference state (a quarter of
+// each of its faces the node is a corner of; the surface is the solid's whole boundary unless
+// given, as FEBio's contact surfaces are) and kappa the penalty [Pa/m]. A pressure P then
+// penetrates w / 2 + P / kappa (P >= kappa w / 2). The smooth start keeps Newton's iteration from
+// cycling on nodes at the edge of the contact zone, which a force with a kink at p = 0 makes
+// jump between a stiff spring and none (a smoothed penalty in the spirit of Wriggers 2006,
+// sec. 10.3). The consistent tangent is psi'' n n^T + (psi' / p) C, C = phi dn/dx the
+// obstacle's curvature term (zero inside a triangle, obstacle.hpp). A node touching several
+// obstacles gets the sum.
 //
 // The force does not scale with a load factor: contact is part of the solid, not a load.
 #include <memory>
+#include <mutex>
 #include <vector>
 
 #include "fem/assembly/dof_map.hpp"
@@ -25,8 +30,11 @@
 namespace tongue::fem {
 
 struct ContactSettings {
-  // kappa [Pa/m]. 1e9 Pa/m: 20 kPa, a firm tongue-palate contact pressure, penetrates 20 um.
+  // kappa [Pa/m]. With the default w, 20 kPa (a firm tongue-palate contact pressure)
+  // penetrates 30 um.
   double penalty = 1e9;
+  // w [m]: the penetration over which the penalty's stiffness grows from 0 to eps.
+  double smoothing = 2e-5;
   // Points deeper than this behind an obstacle's surface are not in contact with it [m]: the
   // back of a sheet seen from the other side. Well beyond any penetration the penalty allows.
   double search_depth = 0.005;
@@ -45,7 +53,7 @@ struct ContactReport {
   std::vector<NodeContact> contacts;  // node by node, in the order of nodes()
   std::vector<Vec3> obstacle_force;   // the total force the solid exerts on each obstacle [N]
   double max_penetration = 0.0;       // largest -phi [m], 0 without contact
-  double energy = 0.0;                // sum eps phi^2 / 2 [J]
+  double energy = 0.0;                // sum of psi [J]
 };
 
 class RigidContact : public ForceContribution {
@@ -58,9 +66,15 @@ class RigidContact : public ForceContribution {
 
   std::string name() const override { return "contact"; }
   // Adds the contact forces at displacement u (load_factor is ignored) and, when given, their
-  // tangent eps (n n^T + phi dn/dx) to the stiffness.
+  // tangent to the stiffness.
   void add(const Vector& u, double load_factor, Vector& force,
            SymmetricMatrix* stiffness) const override;
+
+  // The normal springs psi'' n n^T of the nodes in contact at u (their tangent without the
+  // curvature term), and for the nodes in front of an obstacle within kCandidateGap, the spring
+  // eps n n^T that would engage, with their distance (from their last query, moved along n).
+  static constexpr double kCandidateGap = 0.002;  // [m]
+  void add_springs(const Vector& u, std::vector<NodeSpring>& springs) const override;
 
   ContactReport report(const Vector& u) const;
 
@@ -71,6 +85,11 @@ class RigidContact : public ForceContribution {
   const ContactSettings& settings() const { return settings_; }
 
  private:
+  // psi, psi' and psi'' of candidate i at penetration p.
+  struct Penalty {
+    double energy, force, stiffness;
+  };
+  Penalty penalty(int i, double p) const;
   // Calls visit(candidate index, obstacle index, surface point) for every contact at u.
   template <typename Visit>
   void for_each_contact(const Vector& u, Visit&& visit) const;
@@ -81,6 +100,19 @@ class RigidContact : public ForceContribution {
   std::vector<int> nodes_;
   std::vector<Vec3> rest_;  // reference positions of nodes_ [m]
   std::vector<double> node_penalty_;
+  // What the last closest-point query of each (node, obstacle) pair proved: no contact while the
+  // node stays within `reach` of where it was (|phi| changes no faster than the node moves).
+  // Most nodes are millimetres from every obstacle and move micrometres an iteration, so most
+  // queries are skipped.
+  struct Probe {
+    Vec3 at = Vec3::Zero();
+    double reach = -1.0;    // < 0: query again
+    bool in_front = false;  // valid and phi >= 0 at `at`: then phi and normal below
+    double phi = 0.0;
+    Vec3 normal = Vec3::Zero();
+  };
+  mutable std::vector<Probe> probes_;  // [candidate * obstacles + obstacle]
+  mutable std::mutex probes_mutex_;
 };
 
 }  // namespace tongue::fem

@@ -27,4 +27,19 @@ AssemblyStatus MechanicalSystem::residual(const Vector& u, double load_factor, V
   return status;
 }
 
+void MechanicalSystem::rank_one_terms(const Vector& u, std::vector<RankOneTerm>& terms) const {
+  terms.clear();
+  std::vector<NodeSpring> springs;
+  for (const auto& load : loads_) load->add_springs(u, springs);
+  const DofMap& dofs = solid_->dofs();
+  for (const NodeSpring& s : springs) {
+    RankOneTerm t;
+    for (int c = 0; c < 3; ++c) t.index[c] = dofs.free_index(3 * s.node + c);
+    t.direction = s.direction;
+    t.stiffness = s.stiffness;
+    t.gap = s.gap;
+    terms.push_back(t);
+  }
+}
+
 }  // namespace tongue::fem

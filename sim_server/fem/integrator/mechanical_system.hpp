@@ -6,6 +6,7 @@
 
 #include "fem/assembly/loads.hpp"
 #include "fem/assembly/solid_model.hpp"
+#include "fem/solver/nonlinear_problem.hpp"
 
 namespace tongue::fem {
 
@@ -26,6 +27,9 @@ class MechanicalSystem {
   // for r.
   AssemblyStatus residual(const Vector& u, double load_factor, Vector& r,
                           SymmetricMatrix* stiffness, double* load_norm = nullptr) const;
+  // The loads' springs at u (ForceContribution::add_springs) as rank-one terms of the tangent
+  // over the free dofs, in the loads' order.
+  void rank_one_terms(const Vector& u, std::vector<RankOneTerm>& terms) const;
 
  private:
   std::shared_ptr<const SolidModel> solid_;

@@ -50,6 +50,9 @@ class NewmarkIntegrator::StepProblem : public NonlinearProblem {
     return true;
   }
   double force_scale() const override { return load_norm_; }
+  void rank_one_terms(const Vector& x, std::vector<RankOneTerm>& terms) override {
+    in_.system_.rank_one_terms(full(x), terms);
+  }
 
   Vector acceleration(const Vector& x) const {
     const double beta = in_.settings_.newmark.beta;

@@ -21,6 +21,9 @@ class StaticProblem : public NonlinearProblem {
     return evaluate(x, r, &K);
   }
   double force_scale() const override { return load_norm_; }
+  void rank_one_terms(const Vector& x, std::vector<RankOneTerm>& terms) override {
+    system_.rank_one_terms(full(x), terms);
+  }
   const Vector& full(const Vector& x) {
     system_.solid().dofs().scatter_free(x, u_);
     return u_;

@@ -1,5 +1,6 @@
 #include "fem/solver/newton_solver.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <limits>
@@ -19,6 +20,24 @@ double seconds_since(Clock::time_point start) {
 // times the tolerance pass. With 1/2 the first correction passes only when it is itself
 // within the tolerance.
 constexpr double kFirstContraction = 0.5;
+
+// Rank-one corrections of a reused factor, at most: each new one costs a solve (0.15-0.2 ms on
+// the tongue), so that beyond this many re-forming the factor (about 10 ms) is cheaper.
+constexpr int kMaxCorrections = 96;
+// Rank-one terms this close count as the same: directions within 8 degrees, stiffnesses within
+// a quarter of the larger.
+constexpr double kCloseDirection = 0.99;
+constexpr double kCloseStiffness = 0.75;
+// Rounds of engaging the springs a correction would carry into contact, each a solve more.
+constexpr int kEngageRounds = 3;
+
+// u^T y for the sparse u of a term.
+double apply(const RankOneTerm& t, const Vector& y) {
+  double sum = 0.0;
+  for (int c = 0; c < 3; ++c)
+    if (t.index[c] >= 0) sum += t.direction[c] * y[t.index[c]];
+  return sum;
+}
 
 bool all_finite(const Vector& v) {
   return v.allFinite();
@@ -41,6 +60,105 @@ void NewtonSolver::forget_factor() {
   factor_age_ = -1;
   contraction_ = -1.0;
   updates_.clear();
+  factored_terms_.clear();
+  candidates_.clear();
+  corrections_.clear();
+  computed_.clear();
+}
+
+void NewtonSolver::add_correction(const RankOneTerm& term, double sign) {
+  auto known = std::find_if(computed_.begin(), computed_.end(),
+                            [&](const Correction& c) { return c.term == term; });
+  if (known == computed_.end()) {
+    Vector u = Vector::Zero(tangent_.pattern().size);
+    for (int c = 0; c < 3; ++c)
+      if (term.index[c] >= 0) u[term.index[c]] = term.direction[c];
+    computed_.push_back({term, 1.0, linear_solver_.solve(u)});
+    known = computed_.end() - 1;
+  }
+  corrections_.push_back({term, sign, known->z});
+}
+
+void NewtonSolver::update_capacitance() {
+  const int k = static_cast<int>(corrections_.size());
+  if (k == 0) return;
+  Eigen::MatrixXd C(k, k);
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j) C(i, j) = apply(corrections_[i].term, corrections_[j].z);
+  for (int i = 0; i < k; ++i)
+    C(i, i) += 1.0 / (corrections_[i].sign * corrections_[i].term.stiffness);
+  capacitance_.compute(C);
+}
+
+void NewtonSolver::split_terms() {
+  candidates_.clear();
+  std::erase_if(terms_, [&](const RankOneTerm& t) {
+    if (!t.engaged()) candidates_.push_back(t);
+    return !t.engaged();
+  });
+}
+
+bool NewtonSolver::correct_factor(NonlinearProblem& problem, const Vector& x,
+                                  NewtonReport& report) {
+  problem.rank_one_terms(x, terms_);
+  split_terms();
+  // A term close to one of the factor's on the same unknowns is left to the iteration, as the
+  // rest of the tangent's change is; one that changed more is taken out and put in anew.
+  const auto close = [](const RankOneTerm& a, const RankOneTerm& b) {
+    return a.index == b.index && a.direction.dot(b.direction) > kCloseDirection &&
+           std::abs(a.stiffness - b.stiffness) <=
+               kCloseStiffness * std::max(a.stiffness, b.stiffness);
+  };
+  std::vector<std::pair<RankOneTerm, double>> wanted;  // (term, sign)
+  for (const RankOneTerm& t : terms_) {
+    const auto f = std::find_if(factored_terms_.begin(), factored_terms_.end(),
+                                [&](const RankOneTerm& o) { return close(t, o); });
+    if (f == factored_terms_.end()) wanted.push_back({t, 1.0});
+  }
+  for (const RankOneTerm& t : factored_terms_) {
+    const auto now = std::find_if(terms_.begin(), terms_.end(),
+                                  [&](const RankOneTerm& o) { return close(t, o); });
+    if (now == terms_.end()) wanted.push_back({t, -1.0});
+  }
+  if (static_cast<int>(wanted.size()) > kMaxCorrections) return false;
+  const bool same = wanted.size() == corrections_.size() &&
+                    std::equal(wanted.begin(), wanted.end(), corrections_.begin(),
+                               [](const auto& w, const Correction& c) {
+                                 return w.first == c.term && w.second == c.sign;
+                               });
+  if (same) return true;
+  const auto start = Clock::now();
+  corrections_.clear();
+  for (const auto& [term, sign] : wanted) add_correction(term, sign);
+  update_capacitance();
+  report.solve_seconds += seconds_since(start);
+  return true;
+}
+
+bool NewtonSolver::engage_candidates(const Vector& r, Vector& dx, NewtonReport& report) {
+  bool changed = false;
+  for (int round = 0; round < kEngageRounds && !candidates_.empty(); ++round) {
+    if (static_cast<int>(corrections_.size()) >= kMaxCorrections) break;
+    const auto start = Clock::now();
+    bool engaged = false;
+    for (auto c = candidates_.begin(); c != candidates_.end();) {
+      if (c->gap + apply(*c, dx) < 0.0 && static_cast<int>(corrections_.size()) < kMaxCorrections) {
+        RankOneTerm term = *c;
+        term.gap = 0.0;
+        add_correction(term, 1.0);
+        c = candidates_.erase(c);
+        engaged = true;
+      } else {
+        ++c;
+      }
+    }
+    if (!engaged) break;
+    update_capacitance();
+    dx = direction(r);
+    report.solve_seconds += seconds_since(start);
+    changed = true;
+  }
+  return changed;
 }
 
 Vector NewtonSolver::direction(const Vector& r) const {
@@ -52,6 +170,12 @@ Vector NewtonSolver::direction(const Vector& r) const {
     q -= alpha[i] * updates_[i].y;
   }
   Vector z = linear_solver_.solve(q);
+  if (!corrections_.empty()) {
+    Eigen::VectorXd w(corrections_.size());
+    for (std::size_t j = 0; j < corrections_.size(); ++j) w[j] = apply(corrections_[j].term, z);
+    const Eigen::VectorXd t = capacitance_.solve(w);
+    for (std::size_t j = 0; j < corrections_.size(); ++j) z -= t[j] * corrections_[j].z;
+  }
   for (std::size_t i = 0; i < updates_.size(); ++i) {
     const double beta = updates_[i].inverse_curvature * updates_[i].y.dot(z);
     z += (alpha[i] - beta) * updates_[i].s;
@@ -80,6 +204,11 @@ bool NewtonSolver::refactorize(NonlinearProblem& problem, const Vector& x, Vecto
   factor_age_ = 0;
   contraction_ = -1.0;
   updates_.clear();
+  corrections_.clear();
+  computed_.clear();
+  problem.rank_one_terms(x, terms_);
+  split_terms();
+  factored_terms_ = terms_;
   return true;
 }
 
@@ -126,10 +255,13 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, Vector& x, const Vec
   bool reform = factor_age_ < 0 || s.max_tangent_reuse == 0;
   for (int k = 0; k < s.max_iterations; ++k) {
     report.iterations = k + 1;
+    if (!reform && factor_age_ < s.max_tangent_reuse && !correct_factor(problem, x, report))
+      reform = true;
     if ((reform || factor_age_ >= s.max_tangent_reuse) && !refactorize(problem, x, r, report))
       return fail(report.failure);
     auto start = Clock::now();
-    const Vector dx = direction(r);
+    Vector dx = direction(r);
+    engage_candidates(r, dx, report);
     report.solve_seconds += seconds_since(start);
     if (!all_finite(dx)) return fail("the linear solve gave a non-finite correction");
     ++factor_age_;

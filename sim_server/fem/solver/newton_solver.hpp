@@ -2,6 +2,7 @@
 // Newton-Raphson with a secant line search (Crisfield 1991, sec. 9.3; the scheme ANSYS and FEBio
 // use) and optional reuse of the factorized tangent (modified Newton), re-formed as soon as the
 // residual stops falling fast enough.
+#include <Eigen/LU>
 #include <memory>
 #include <string>
 #include <vector>
@@ -88,13 +89,40 @@ class NewtonSolver {
     double inverse_curvature;
   };
   std::vector<Update> updates_;
+  // Rank-one corrections of the reused factor A for the problem's rank-one terms that changed
+  // since it was formed (contact springs engaging, +k v v^T, or releasing, -k v v^T), solved by
+  // the Sherman-Morrison-Woodbury formula (Golub & Van Loan 2013, sec. 2.1.4):
+  //   (A + U D U^T)^-1 = A^-1 - Z (D^-1 + U^T Z)^-1 Z^T,  Z = A^-1 U,
+  // each column of Z one solve with A, kept while A lives.
+  std::vector<RankOneTerm> factored_terms_;  // the terms A holds
+  struct Correction {
+    RankOneTerm term;
+    double sign = 1.0;  // +1: added to A, -1: taken out of it
+    Vector z;           // A^-1 u
+  };
+  std::vector<Correction> corrections_;               // in force: U, D and Z
+  std::vector<Correction> computed_;                  // every column computed with this factor
+  Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_;  // D^-1 + U^T Z
+  std::vector<RankOneTerm> terms_;                    // scratch
+  std::vector<RankOneTerm> candidates_;               // terms not engaged at the current iterate
+  void split_terms();  // moves the terms of terms_ not engaged to candidates_
+  // Brings corrections_ up to the problem's engaged terms at x; false when more would be
+  // needed than re-forming the factor costs.
+  bool correct_factor(NonlinearProblem& problem, const Vector& x, NewtonReport& report);
+  // Adds the correction of a term, solving for its column of Z unless known.
+  void add_correction(const RankOneTerm& term, double sign);
+  void update_capacitance();
+  // Engages the candidate terms that the correction dx would carry past their gap (a node
+  // moving into an obstacle) and solves again with them, a few rounds at most; true when it
+  // changed dx.
+  bool engage_candidates(const Vector& r, Vector& dx, NewtonReport& report);
   // Counts and times the residual evaluations of one solve.
   struct Residuals {
     NonlinearProblem& problem;
     NewtonReport& report;
     bool operator()(const Vector& at, Vector& out) const;
   };
-  // -H r: the factor's solve, corrected by the BFGS updates.
+  // -H r: the factor's solve with its rank-one corrections, corrected by the BFGS updates.
   Vector direction(const Vector& r) const;
   // Forms and factorizes the tangent at x (and the residual r with it); false with
   // report.failure set when either fails.

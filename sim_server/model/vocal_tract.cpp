@@ -1,0 +1,143 @@
+#include "model/vocal_tract.hpp"
+
+#include <array>
+#include <cmath>
+#include <functional>
+
+#include "model/tongue_geometry.hpp"
+
+namespace tongue::model {
+
+namespace {
+
+using fem::Vec3;
+
+// Outward unit normals at the grid's boundary nodes: the sum of the normals of the boundary faces
+// around each node, each pointing away from its element's centre, weighted by face area.
+std::vector<Vec3> outward_normals(const TongueGrid& grid) {
+  const fem::Mesh& mesh = grid.mesh;
+  const GridSize& g = grid.size;
+  std::vector<Vec3> normal(mesh.nodes.size(), Vec3::Zero());
+  for (int k = 0; k < g.lateral; ++k)
+    for (int j = 0; j < g.radial; ++j)
+      for (int i = 0; i < g.angular; ++i) {
+        Vec3 centre = Vec3::Zero();
+        for (int n : mesh.elements[grid.element(i, j, k)]) centre += mesh.nodes[n] / 8.0;
+        // The element's faces on the boundary, each as four corners in cyclic order.
+        std::vector<std::array<int, 4>> faces;
+        const auto quad = [&](std::array<std::array<int, 3>, 4> c) {
+          faces.push_back(
+              {grid.node(c[0][0], c[0][1], c[0][2]), grid.node(c[1][0], c[1][1], c[1][2]),
+               grid.node(c[2][0], c[2][1], c[2][2]), grid.node(c[3][0], c[3][1], c[3][2])});
+        };
+        for (int side : {0, 1}) {
+          const int ii = i + side, jj = j + side, kk = k + side;
+          if ((side == 0 && i == 0) || (side == 1 && i + 1 == g.angular))
+            quad({{{ii, j, k}, {ii, j + 1, k}, {ii, j + 1, k + 1}, {ii, j, k + 1}}});
+          if ((side == 0 && j == 0) || (side == 1 && j + 1 == g.radial))
+            quad({{{i, jj, k}, {i + 1, jj, k}, {i + 1, jj, k + 1}, {i, jj, k + 1}}});
+          if ((side == 0 && k == 0) || (side == 1 && k + 1 == g.lateral))
+            quad({{{i, j, kk}, {i + 1, j, kk}, {i + 1, j + 1, kk}, {i, j + 1, kk}}});
+        }
+        for (const auto& f : faces) {
+          Vec3 area =
+              (mesh.nodes[f[2]] - mesh.nodes[f[0]]).cross(mesh.nodes[f[3]] - mesh.nodes[f[1]]);
+          Vec3 face_centre = Vec3::Zero();
+          for (int n : f) face_centre += mesh.nodes[n] / 4.0;
+          if (area.dot(face_centre - centre) < 0.0) area = -area;
+          for (int n : f) normal[n] += area;
+        }
+      }
+  for (Vec3& n : normal)
+    if (n.norm() > 0.0) n.normalize();
+  return normal;
+}
+
+// A sheet over a rows x cols patch of boundary nodes, each moved out by `gap` along its normal,
+// the quads split into triangles that face the tongue.
+fem::TriangleSurface offset_sheet(const TongueGrid& grid, const std::vector<Vec3>& normal, int rows,
+                                  int cols, const std::function<int(int, int)>& node, double gap) {
+  fem::TriangleSurface s;
+  for (int r = 0; r < rows; ++r)
+    for (int c = 0; c < cols; ++c) {
+      const int n = node(r, c);
+      s.vertices.push_back(grid.mesh.nodes[n] + gap * normal[n]);
+    }
+  const auto id = [&](int r, int c) { return r * cols + c; };
+  const auto outward = [&](int r, int c) { return normal[node(r, c)]; };
+  for (int r = 0; r + 1 < rows; ++r)
+    for (int c = 0; c + 1 < cols; ++c) {
+      std::array<int, 3> t1{id(r, c), id(r + 1, c), id(r + 1, c + 1)};
+      std::array<int, 3> t2{id(r, c), id(r + 1, c + 1), id(r, c + 1)};
+      const Vec3 n1 =
+          (s.vertices[t1[1]] - s.vertices[t1[0]]).cross(s.vertices[t1[2]] - s.vertices[t1[0]]);
+      if (n1.dot(outward(r, c) + outward(r + 1, c + 1)) > 0.0) {  // faces away: turn both
+        std::swap(t1[1], t1[2]);
+        std::swap(t2[1], t2[2]);
+      }
+      s.triangles.push_back(t1);
+      s.triangles.push_back(t2);
+    }
+  return s;
+}
+
+fem::TriangleSurface join(fem::TriangleSurface a, const fem::TriangleSurface& b) {
+  const int offset = static_cast<int>(a.vertices.size());
+  a.vertices.insert(a.vertices.end(), b.vertices.begin(), b.vertices.end());
+  for (auto t : b.triangles) a.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  return a;
+}
+
+}  // namespace
+
+std::vector<std::shared_ptr<const fem::Obstacle>> make_vocal_tract(const VocalTractGaps& gaps) {
+  constexpr int kRefinement = 4;
+  const TongueGrid grid = make_tongue_grid(default_tongue_shape(), kRefinement);
+  const std::vector<Vec3> normal = outward_normals(grid);
+  const GridSize& g = grid.size;
+  const int R = g.radial, K = g.lateral, mid = grid.midline();
+  // Fractions of the angular range (tip 0 .. root 1) and of the radius, as grid indices.
+  const auto at = [](double fraction, int count) {
+    return static_cast<int>(std::lround(fraction * count));
+  };
+
+  // Hard palate and alveolar ridge: up the front face from 55 % of the radius to the tip, then
+  // back over the dorsum to 40 % of the angular range; every lateral layer.
+  const int front_rows = R - at(0.55, R);
+  const int palate_end = at(0.40, g.angular);
+  auto palate = offset_sheet(
+      grid, normal, front_rows + palate_end + 1, K + 1,
+      [&](int r, int c) {
+        return r < front_rows ? grid.node(0, at(0.55, R) + r, c) : grid.node(r - front_rows, R, c);
+      },
+      gaps.hard_palate);
+
+  // Upper teeth: both sides of the front 40 %, from half the radius to the dorsum.
+  const int teeth_rows = palate_end + 1, teeth_cols = R - at(0.5, R) + 1;
+  const auto side = [&](int k) {
+    return offset_sheet(
+        grid, normal, teeth_rows, teeth_cols,
+        [&, k](int r, int c) { return grid.node(r, at(0.5, R) + c, k); }, gaps.upper_teeth);
+  };
+  auto teeth = join(side(0), side(K));
+
+  // Velum: the dorsum from 36 % to 62 % of the angular range, the middle 60 % of the width.
+  const int velum_begin = at(0.36, g.angular), velum_end = at(0.62, g.angular);
+  const int half = at(0.3, K);
+  auto velum = offset_sheet(
+      grid, normal, velum_end - velum_begin + 1, 2 * half + 1,
+      [&](int r, int c) { return grid.node(velum_begin + r, R, mid - half + c); }, gaps.velum);
+
+  // Pharyngeal wall: the dorsum from 66 % of the angular range to the root's end, full width.
+  const int wall_begin = at(0.66, g.angular);
+  auto wall = offset_sheet(
+      grid, normal, g.angular - wall_begin + 1, K + 1,
+      [&](int r, int c) { return grid.node(wall_begin + r, R, c); }, gaps.pharyngeal_wall);
+
+  return {std::make_shared<const fem::Obstacle>("hard_palate", std::move(palate)),
+          std::make_shared<const fem::Obstacle>("upper_teeth", std::move(teeth)),
+          std::make_shared<const fem::Obstacle>("velum", std::move(velum)),
+          std::make_shared<const fem::Obstacle>("pharyngeal_wall", std::move(wall))};
+}
+
+}  // namespace tongue::model
