@@ -291,7 +291,7 @@ class BatchRun {
     log_->append(time, built().solid->rest_positions() + u, figures, muscles);
   }
 
-  // Largest nodal displacement and volume change seen so far.
+  // Largest nodal displacement, volume change and penetration of an obstacle seen so far.
   void track(const fem::Vector& u) {
     last_u_ = u;
     final_displacement_ = 0.0;
@@ -301,6 +301,10 @@ class BatchRun {
     const fem::SolidModel& solid = *built().solid;
     volume_change_ = solid.current_volume(u) / solid.reference_volume() - 1.0;
     max_volume_change_ = std::max(max_volume_change_, std::abs(volume_change_));
+    if (built().contact) {
+      last_contact_ = built().contact->report(u);
+      max_penetration_ = std::max(max_penetration_, last_contact_.max_penetration);
+    }
   }
 
   void header(const char* step, const char* time) const {
@@ -340,8 +344,24 @@ class BatchRun {
         max_displacement_ * 1e3, final_displacement_ * 1e3, volume_change_ * 100.0,
         max_volume_change_ * 100.0);
     landmarks();
+    contact();
     if (log_)
       std::printf("         run file %s: %d frames\n", log_->path().c_str(), log_->frames());
+  }
+
+  // The deepest penetration of an obstacle over the run and the contact at its end.
+  void contact() const {
+    if (!built().contact) return;
+    const auto& obstacles = built().contact->obstacles();
+    std::printf("         contact: max penetration %.4f mm; at the end %zu nodes in contact, ",
+                max_penetration_ * 1e3, last_contact_.contacts.size());
+    std::printf("force on each obstacle [N]:\n");
+    for (std::size_t o = 0; o < obstacles.size(); ++o) {
+      const fem::Vec3 f = o < last_contact_.obstacle_force.size() ? last_contact_.obstacle_force[o]
+                                                                  : fem::Vec3::Zero();
+      std::printf("           %-48s %+8.4f %+8.4f %+8.4f %8.4f\n", obstacles[o]->name().c_str(),
+                  f.x(), f.y(), f.z(), f.norm());
+    }
   }
 
   // Mean displacement of each landmark set the mesh has (the tongue's), from the first frame
@@ -379,6 +399,8 @@ class BatchRun {
   double wall_ = 0.0, simulated_ = 0.0;
   double max_displacement_ = 0.0, final_displacement_ = 0.0;  // m
   double volume_change_ = 0.0, max_volume_change_ = 0.0;      // relative
+  fem::ContactReport last_contact_;                           // at the last state tracked
+  double max_penetration_ = 0.0;                              // m, over the run
   fem::Vector initial_u_, last_u_;                            // m, first frame and last state
 };
 

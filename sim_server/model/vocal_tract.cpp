@@ -1,5 +1,6 @@
 #include "model/vocal_tract.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <functional>
@@ -53,15 +54,16 @@ std::vector<Vec3> outward_normals(const TongueGrid& grid) {
   return normal;
 }
 
-// A sheet over a rows x cols patch of boundary nodes, each moved out by `gap` along its normal,
-// the quads split into triangles that face the tongue.
+// A sheet over a rows x cols patch of boundary nodes, each moved out along its normal by the gap
+// of its row, the quads split into triangles that face the tongue.
 fem::TriangleSurface offset_sheet(const TongueGrid& grid, const std::vector<Vec3>& normal, int rows,
-                                  int cols, const std::function<int(int, int)>& node, double gap) {
+                                  int cols, const std::function<int(int, int)>& node,
+                                  const std::function<double(int)>& gap) {
   fem::TriangleSurface s;
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) {
       const int n = node(r, c);
-      s.vertices.push_back(grid.mesh.nodes[n] + gap * normal[n]);
+      s.vertices.push_back(grid.mesh.nodes[n] + gap(r) * normal[n]);
     }
   const auto id = [&](int r, int c) { return r * cols + c; };
   const auto outward = [&](int r, int c) { return normal[node(r, c)]; };
@@ -102,22 +104,29 @@ std::vector<std::shared_ptr<const fem::Obstacle>> make_vocal_tract(const VocalTr
   };
 
   // Hard palate and alveolar ridge: up the front face from 55 % of the radius to the tip, then
-  // back over the dorsum to 40 % of the angular range; every lateral layer.
+  // back over the dorsum to 40 % of the angular range; every lateral layer. The ridge (the front
+  // face and the first 8 % of the dorsum) at its own gap, the vault behind it at the palate's,
+  // blended over the next 8 %.
   const int front_rows = R - at(0.55, R);
   const int palate_end = at(0.40, g.angular);
+  const double ridge_end = front_rows + 0.08 * g.angular, blend = 0.08 * g.angular;
   auto palate = offset_sheet(
       grid, normal, front_rows + palate_end + 1, K + 1,
       [&](int r, int c) {
         return r < front_rows ? grid.node(0, at(0.55, R) + r, c) : grid.node(r - front_rows, R, c);
       },
-      gaps.hard_palate);
+      [&](int r) {
+        const double t = std::clamp((r - ridge_end) / blend, 0.0, 1.0);
+        return gaps.alveolar_ridge + t * (gaps.hard_palate - gaps.alveolar_ridge);
+      });
 
   // Upper teeth: both sides of the front 40 %, from half the radius to the dorsum.
   const int teeth_rows = palate_end + 1, teeth_cols = R - at(0.5, R) + 1;
   const auto side = [&](int k) {
     return offset_sheet(
         grid, normal, teeth_rows, teeth_cols,
-        [&, k](int r, int c) { return grid.node(r, at(0.5, R) + c, k); }, gaps.upper_teeth);
+        [&, k](int r, int c) { return grid.node(r, at(0.5, R) + c, k); },
+        [&](int) { return gaps.upper_teeth; });
   };
   auto teeth = join(side(0), side(K));
 
@@ -126,13 +135,15 @@ std::vector<std::shared_ptr<const fem::Obstacle>> make_vocal_tract(const VocalTr
   const int half = at(0.3, K);
   auto velum = offset_sheet(
       grid, normal, velum_end - velum_begin + 1, 2 * half + 1,
-      [&](int r, int c) { return grid.node(velum_begin + r, R, mid - half + c); }, gaps.velum);
+      [&](int r, int c) { return grid.node(velum_begin + r, R, mid - half + c); },
+      [&](int) { return gaps.velum; });
 
   // Pharyngeal wall: the dorsum from 66 % of the angular range to the root's end, full width.
   const int wall_begin = at(0.66, g.angular);
   auto wall = offset_sheet(
       grid, normal, g.angular - wall_begin + 1, K + 1,
-      [&](int r, int c) { return grid.node(wall_begin + r, R, c); }, gaps.pharyngeal_wall);
+      [&](int r, int c) { return grid.node(wall_begin + r, R, c); },
+      [&](int) { return gaps.pharyngeal_wall; });
 
   return {std::make_shared<const fem::Obstacle>("hard_palate", std::move(palate)),
           std::make_shared<const fem::Obstacle>("upper_teeth", std::move(teeth)),

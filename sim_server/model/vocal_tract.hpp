@@ -21,9 +21,10 @@
 namespace tongue::model {
 
 struct VocalTractGaps {
-  double hard_palate = 0.006;      // m, along the tongue's outward normal at rest
+  double alveolar_ridge = 0.002;   // m, along the tongue's outward normal at rest
+  double hard_palate = 0.003;      // m
   double upper_teeth = 0.003;      // m
-  double velum = 0.007;            // m
+  double velum = 0.003;            // m
   double pharyngeal_wall = 0.007;  // m
 };
 

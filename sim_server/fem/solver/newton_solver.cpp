@@ -136,6 +136,9 @@ bool NewtonSolver::correct_factor(NonlinearProblem& problem, const Vector& x,
 }
 
 bool NewtonSolver::engage_candidates(const Vector& r, Vector& dx, NewtonReport& report) {
+  // An engaged spring acts from its gap on: its force k (gap + v . dx) enters the linear model
+  // of the residual as k gap v beside the tangent's k v v^T.
+  Vector r_model = r;
   bool changed = false;
   for (int round = 0; round < kEngageRounds && !candidates_.empty(); ++round) {
     if (static_cast<int>(corrections_.size()) >= kMaxCorrections) break;
@@ -143,6 +146,8 @@ bool NewtonSolver::engage_candidates(const Vector& r, Vector& dx, NewtonReport& 
     bool engaged = false;
     for (auto c = candidates_.begin(); c != candidates_.end();) {
       if (c->gap + apply(*c, dx) < 0.0 && static_cast<int>(corrections_.size()) < kMaxCorrections) {
+        for (int i = 0; i < 3; ++i)
+          if (c->index[i] >= 0) r_model[c->index[i]] += c->stiffness * c->gap * c->direction[i];
         RankOneTerm term = *c;
         term.gap = 0.0;
         add_correction(term, 1.0);
@@ -154,7 +159,7 @@ bool NewtonSolver::engage_candidates(const Vector& r, Vector& dx, NewtonReport& 
     }
     if (!engaged) break;
     update_capacitance();
-    dx = direction(r);
+    dx = direction(r_model);
     report.solve_seconds += seconds_since(start);
     changed = true;
   }
