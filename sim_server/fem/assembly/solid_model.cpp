@@ -46,6 +46,25 @@ SolidModel::SolidModel(Mesh mesh, std::shared_ptr<const Material> material, Form
   AssemblyPattern assembly = build_assembly_pattern(mesh_, dofs_, extra_node_pairs);
   pattern_ = std::make_shared<const SparsityPattern>(std::move(assembly.pattern));
   element_scatter_ = std::move(assembly.element_scatter);
+  if (!batches_.empty()) {
+    tangent_begin_.reserve(mesh_.elements.size() + 1);
+    tangent_begin_.push_back(0);
+    for (const auto& map : element_scatter_) {
+      for (int j = 0; j < 24; ++j) {
+        for (int i = 0; i < 24; ++i) {
+          const int k = map[24 * i + j];
+          if (k < 0) continue;
+          // K(i, j) of the whole element matrix, from an upper node block.
+          const int a = i / 3, b = j / 3;
+          const int source = a <= b ? 9 * upper_block(a, b) + 3 * (i % 3) + j % 3
+                                    : 9 * upper_block(b, a) + 3 * (j % 3) + i % 3;
+          tangent_value_.push_back(k);
+          tangent_source_.push_back(static_cast<std::uint16_t>(source));
+        }
+      }
+      tangent_begin_.push_back(static_cast<int>(tangent_value_.size()));
+    }
+  }
 }
 
 hex8::ElementCoords SolidModel::element_coords(int e, const Vector& positions) const {
@@ -75,6 +94,7 @@ struct SolidModel::Workspace {
   std::vector<int> elements;
   std::vector<int> batches;
   std::vector<ElementBatchResponse> batch_results;
+  std::vector<ElementBatchTangent> batch_tangents;
   std::vector<ElementVector> force;
   std::vector<ElementMatrix> stiffness;
   std::vector<double> energy, min_J;
@@ -123,9 +143,8 @@ AssemblyStatus SolidModel::add_weighted(const Vector& u, const std::vector<doubl
   if (!weights.empty() && static_cast<int>(weights.size()) != mesh_.num_elements()) {
     throw std::invalid_argument("element weights: one per element expected");
   }
+  if (!batches_.empty()) return add_batches(u, weights, internal_force, stiffness, strain_energy);
   const bool want_stiffness = stiffness != nullptr;
-  if (!want_stiffness && !batches_.empty())
-    return add_batches(u, weights, internal_force, strain_energy);
   const auto weight = [&](int e) { return weights.empty() ? 1.0 : weights[e]; };
   AssemblyStatus status;
   status.min_J = std::numeric_limits<double>::infinity();
@@ -210,8 +229,11 @@ BatchCoords SolidModel::batch_coords(int b, const Vector& u) const {
 }
 
 bool SolidModel::add_batch_result(int b, const ElementBatchResponse& r,
+                                  const ElementBatchTangent* tangent,
                                   const std::vector<double>& weights, Vector& internal_force,
-                                  double* strain_energy, AssemblyStatus& status) const {
+                                  SymmetricMatrix* K, double* strain_energy,
+                                  AssemblyStatus& status) const {
+  double* values = K ? K->values().data() : nullptr;
   for (int l = 0; l < batches_[b].count; ++l) {
     const int e = kBatchLanes * b + l;
     const double w = weights.empty() ? 1.0 : weights[e];
@@ -227,12 +249,39 @@ bool SolidModel::add_batch_result(int b, const ElementBatchResponse& r,
     for (int a = 0; a < 8; ++a)
       for (int i = 0; i < 3; ++i)
         internal_force[3 * nodes[a] + i] += w * r.force[3 * a + i].lane[l];
+    if (values == nullptr) continue;
+    for (int i = tangent_begin_[e]; i < tangent_begin_[e + 1]; ++i)
+      values[tangent_value_[i]] += w * tangent->stiffness[tangent_source_[i]].lane[l];
   }
   return true;
 }
 
+namespace {
+
+// The several-thread side of add_batches: the batches evaluated in parallel, a block at a time,
+// into results (evaluate(b, result)), then added by the calling thread in batch order (add(b,
+// result); false stops), exactly as one thread adds them.
+template <class Result, class Evaluate, class Add>
+void in_parallel_blocks(WorkerPool& pool, const std::vector<int>& batches,
+                        std::vector<Result>& results, const Evaluate& evaluate, const Add& add) {
+  const int total = static_cast<int>(batches.size());
+  const int block = std::min(total, kBlockElements / kBatchLanes);
+  results.resize(block);
+  for (int first = 0; first < total; first += block) {
+    const int count = std::min(block, total - first);
+    pool.parallel_for(count, [&](int begin, int end) {
+      for (int i = begin; i < end; ++i) evaluate(batches[first + i], results[i]);
+    });
+    for (int i = 0; i < count; ++i)
+      if (!add(batches[first + i], results[i])) return;
+  }
+}
+
+}  // namespace
+
 AssemblyStatus SolidModel::add_batches(const Vector& u, const std::vector<double>& weights,
-                                       Vector& internal_force, double* strain_energy) const {
+                                       Vector& internal_force, SymmetricMatrix* K,
+                                       double* strain_energy) const {
   const UncoupledMaterial& material = *material_->as_uncoupled();
   AssemblyStatus status;
   status.min_J = std::numeric_limits<double>::infinity();
@@ -243,14 +292,35 @@ AssemblyStatus SolidModel::add_batches(const Vector& u, const std::vector<double
       if (weights[kBatchLanes * b + l] != 0.0) return true;
     return false;
   };
+  const auto force = [&](int b, ElementBatchResponse& r) {
+    evaluate_batch_force(batches_[b], batch_coords(b, u), material, formulation_, r);
+  };
+  const auto tangent = [&](int b, ElementBatchTangent& t) {
+    evaluate_batch_tangent(batches_[b], batch_coords(b, u), material, formulation_, t);
+  };
+  const auto add_force = [&](int b, const ElementBatchResponse& r) {
+    return add_batch_result(b, r, nullptr, weights, internal_force, nullptr, strain_energy, status);
+  };
+  const auto add_tangent = [&](int b, const ElementBatchTangent& t) {
+    return add_batch_result(b, t.response, &t, weights, internal_force, K, strain_energy, status);
+  };
   const int num_batches = static_cast<int>(batches_.size());
 
   if (!pool_) {
-    ElementBatchResponse r;
-    for (int b = 0; b < num_batches; ++b) {
-      if (!active(b)) continue;
-      evaluate_batch_force(batches_[b], batch_coords(b, u), material, formulation_, r);
-      if (!add_batch_result(b, r, weights, internal_force, strain_energy, status)) return status;
+    if (K == nullptr) {
+      ElementBatchResponse r;
+      for (int b = 0; b < num_batches; ++b) {
+        if (!active(b)) continue;
+        force(b, r);
+        if (!add_force(b, r)) break;
+      }
+    } else {
+      ElementBatchTangent t;
+      for (int b = 0; b < num_batches; ++b) {
+        if (!active(b)) continue;
+        tangent(b, t);
+        if (!add_tangent(b, t)) break;
+      }
     }
     return status;
   }
@@ -261,24 +331,10 @@ AssemblyStatus SolidModel::add_batches(const Vector& u, const std::vector<double
   ws.batches.clear();
   for (int b = 0; b < num_batches; ++b)
     if (active(b)) ws.batches.push_back(b);
-  const int total = static_cast<int>(ws.batches.size());
-  const int block = std::min(total, kBlockElements / kBatchLanes);
-  ws.batch_results.resize(block);
-  for (int first = 0; first < total; first += block) {
-    const int count = std::min(block, total - first);
-    pool_->parallel_for(count, [&](int begin, int end) {
-      for (int i = begin; i < end; ++i) {
-        const int b = ws.batches[first + i];
-        evaluate_batch_force(batches_[b], batch_coords(b, u), material, formulation_,
-                             ws.batch_results[i]);
-      }
-    });
-    for (int i = 0; i < count; ++i) {
-      if (!add_batch_result(ws.batches[first + i], ws.batch_results[i], weights, internal_force,
-                            strain_energy, status))
-        return status;
-    }
-  }
+  if (K == nullptr)
+    in_parallel_blocks(*pool_, ws.batches, ws.batch_results, force, add_force);
+  else
+    in_parallel_blocks(*pool_, ws.batches, ws.batch_tangents, tangent, add_tangent);
   return status;
 }
 

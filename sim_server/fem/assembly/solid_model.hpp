@@ -3,6 +3,7 @@
 // constraints, with everything that depends only on the reference configuration computed once
 // (element geometry, sparsity pattern and scatter map). It evaluates internal forces, tangent
 // stiffness, mass and body forces; it knows nothing of time stepping or of where loads come from.
+#include <cstdint>
 #include <memory>
 #include <utility>
 #include <vector>
@@ -11,6 +12,7 @@
 #include "fem/assembly/sparse_matrix.hpp"
 #include "fem/assembly/worker_pool.hpp"
 #include "fem/element/hex8_batch.hpp"
+#include "fem/element/hex8_batch_tangent.hpp"
 #include "fem/element/hex8_element.hpp"
 #include "fem/material/material.hpp"
 #include "fem/mesh/mesh.hpp"
@@ -79,16 +81,17 @@ class SolidModel {
   // Adds w times one element's force and tangent (when K is given) to the global arrays.
   void scatter(int e, double w, const ElementVector& force, const ElementMatrix* stiffness,
                Vector& internal_force, SymmetricMatrix* K) const;
-  // The residual path of an uncoupled material: the elements in batches of kBatchLanes
-  // (hex8_batch.hpp), batch b holding elements kBatchLanes b onwards.
+  // The element loop of an uncoupled material: the elements in batches of kBatchLanes
+  // (hex8_batch.hpp, hex8_batch_tangent.hpp), batch b holding elements kBatchLanes b onwards.
   AssemblyStatus add_batches(const Vector& u, const std::vector<double>& weights,
-                             Vector& internal_force, double* strain_energy) const;
+                             Vector& internal_force, SymmetricMatrix* K,
+                             double* strain_energy) const;
   BatchCoords batch_coords(int b, const Vector& u) const;
-  // Adds batch b's weighted forces and energies in element order; false, with status telling
-  // which element, at an inverted element.
-  bool add_batch_result(int b, const ElementBatchResponse& r, const std::vector<double>& weights,
-                        Vector& internal_force, double* strain_energy,
-                        AssemblyStatus& status) const;
+  // Adds batch b's weighted forces, energies and (with K) stiffnesses in element order; false,
+  // with status telling which element, at an inverted element.
+  bool add_batch_result(int b, const ElementBatchResponse& r, const ElementBatchTangent* tangent,
+                        const std::vector<double>& weights, Vector& internal_force,
+                        SymmetricMatrix* K, double* strain_energy, AssemblyStatus& status) const;
 
   Mesh mesh_;
   std::shared_ptr<const Material> material_;
@@ -101,6 +104,12 @@ class SolidModel {
   std::vector<hex8::ElementCoords> rest_coords_;  // per element, gathered once
   std::shared_ptr<const SparsityPattern> pattern_;
   std::vector<std::array<int, 24 * 24>> element_scatter_;
+  // The tangent kernel's scatter (uncoupled materials): element e adds stiffness entry
+  // tangent_source_[i] (an index into ElementBatchTangent::stiffness) to K.values()
+  // [tangent_value_[i]] for i in [tangent_begin_[e], tangent_begin_[e + 1]): element_scatter_
+  // resolved once to the upper node blocks the kernel stores.
+  std::vector<int> tangent_begin_, tangent_value_;
+  std::vector<std::uint16_t> tangent_source_;
   std::unique_ptr<WorkerPool> pool_;  // null: one thread
   std::unique_ptr<Workspace> workspace_;
 };

@@ -59,6 +59,11 @@ class UncoupledMaterial : public Material {
   // point; a law overrides it when a loop over its formula is cheaper than n virtual calls.
   virtual void isochoric_first_derivatives(int n, const double* I1_bar, const double* I2_bar,
                                            double* energy, double* d1, double* d2) const;
+  // The same with the second derivatives d2W/dI1b2, d2W/dI1b dI2b, d2W/dI2b2, for the tangent
+  // kernel; every pointer holds n values. The default calls isochoric_derivatives point by point.
+  virtual void isochoric_second_derivatives(int n, const double* I1_bar, const double* I2_bar,
+                                            double* energy, double* d1, double* d2, double* d11,
+                                            double* d12, double* d22) const;
 
   PointResponse response(const Mat3& F, bool with_tangent = true) const override;
   const UncoupledMaterial* as_uncoupled() const override { return this; }

@@ -56,4 +56,19 @@ void MooneyRivlin5::isochoric_first_derivatives(int n, const double* __restrict 
   }
 }
 
+void MooneyRivlin5::isochoric_second_derivatives(int n, const double* __restrict I1_bar,
+                                                 const double* __restrict I2_bar,
+                                                 double* __restrict energy, double* __restrict d1,
+                                                 double* __restrict d2, double* __restrict d11,
+                                                 double* __restrict d12,
+                                                 double* __restrict d22) const {
+  isochoric_first_derivatives(n, I1_bar, I2_bar, energy, d1, d2);
+  // A polynomial of degree 2 in the invariants: constant second derivatives.
+  for (int p = 0; p < n; ++p) {
+    d11[p] = 2.0 * c_.c20;
+    d12[p] = c_.c11;
+    d22[p] = 2.0 * c_.c02;
+  }
+}
+
 }  // namespace tongue::fem

@@ -29,6 +29,9 @@ class MooneyRivlin5 final : public UncoupledMaterial {
   InvariantDerivatives isochoric_derivatives(double I1_bar, double I2_bar) const override;
   void isochoric_first_derivatives(int n, const double* I1_bar, const double* I2_bar,
                                    double* energy, double* d1, double* d2) const override;
+  void isochoric_second_derivatives(int n, const double* I1_bar, const double* I2_bar,
+                                    double* energy, double* d1, double* d2, double* d11,
+                                    double* d12, double* d22) const override;
   const Coefficients& coefficients() const { return c_; }
 
  private:

@@ -170,6 +170,21 @@ void UncoupledMaterial::isochoric_first_derivatives(int n, const double* I1_bar,
   }
 }
 
+void UncoupledMaterial::isochoric_second_derivatives(int n, const double* I1_bar,
+                                                     const double* I2_bar, double* energy,
+                                                     double* d1, double* d2, double* d11,
+                                                     double* d12, double* d22) const {
+  for (int p = 0; p < n; ++p) {
+    const InvariantDerivatives w = isochoric_derivatives(I1_bar[p], I2_bar[p]);
+    energy[p] = w.energy;
+    d1[p] = w.d1;
+    d2[p] = w.d2;
+    d11[p] = w.d11;
+    d12[p] = w.d12;
+    d22[p] = w.d22;
+  }
+}
+
 PointResponse UncoupledMaterial::isochoric_response(const Mat3& F, bool with_tangent) const {
   const Kinematics k(F);
   if (!(k.J > 0.0)) return inverted_response();

@@ -213,6 +213,82 @@ INSTANTIATE_TEST_SUITE_P(
              (info.param.dilation > 1.0 ? "_dilated" : "");
     });
 
+class BatchedTangent : public ::testing::TestWithParam<BatchCase> {};
+
+// With a stiffness wanted, uncoupled materials go through the tangent kernel 8 elements at a
+// time (hex8_batch_tangent.hpp). The assembled tangent, force and energy are those of the
+// reference element summed element by element over the free dofs: on a 5 x 4 x 3 box (7 full
+// batches and a partial one) with prescribed dofs (entries dropped), element weights of which
+// some are 0, with and without the I2 terms, dilated by 1.5 in one case.
+TEST_P(BatchedTangent, EqualsTheReferenceElementAssembled) {
+  const BatchCase c = GetParam();
+  const Mesh mesh = distorted_box(5, 4, 3);
+  std::map<std::string, double> parameters;
+  if (c.material == "neo_hookean") parameters["shear_modulus"] = 3000.0;  // Pa
+  const std::shared_ptr<const Material> material = make_material(c.material, parameters);
+  const SolidModel model(mesh, material, c.formulation, kDensity, constraints(mesh));
+  const DofMap& dofs = model.dofs();
+  ASSERT_LT(dofs.num_free(), dofs.num_dofs());
+  const Vector u = displacement_field(
+      mesh, [&](const Vec3& X) { return Vec3(c.dilation * (X + deformation(X)) - X); });
+  std::vector<double> weights(mesh.num_elements());
+  for (int e = 0; e < mesh.num_elements(); ++e)
+    weights[e] = e % 4 == 1 ? 0.0 : 1.0 + 0.25 * (e % 3);
+
+  Vector f = Vector::Zero(model.num_dofs());
+  SymmetricMatrix K(model.pattern());
+  double energy = 0.0;
+  const AssemblyStatus status = model.add_weighted(u, weights, f, &K, &energy);
+  ASSERT_TRUE(status.ok);
+
+  Vector expected_f = Vector::Zero(model.num_dofs());
+  Eigen::MatrixXd expected_K = Eigen::MatrixXd::Zero(dofs.num_free(), dofs.num_free());
+  double expected_energy = 0.0, scale = 0.0;
+  for (int e = 0; e < mesh.num_elements(); ++e) {
+    if (weights[e] == 0.0) continue;
+    const Hex8& nodes = mesh.elements[e];
+    hex8::ElementCoords X, x;
+    for (int a = 0; a < 8; ++a) {
+      X.row(a) = mesh.nodes[nodes[a]].transpose();
+      x.row(a) = (mesh.nodes[nodes[a]] + u.segment<3>(3 * nodes[a])).transpose();
+    }
+    ElementResponse r;
+    ASSERT_TRUE(testing::reference_evaluate_element(make_element_geometry(X), x, *material,
+                                                    c.formulation, true, r));
+    for (int i = 0; i < 24; ++i) {
+      expected_f[3 * nodes[i / 3] + i % 3] += weights[e] * r.force[i];
+      const int fi = dofs.free_index(3 * nodes[i / 3] + i % 3);
+      for (int j = 0; j < 24; ++j) {
+        const int fj = dofs.free_index(3 * nodes[j / 3] + j % 3);
+        if (fi >= 0 && fj >= 0) expected_K(fi, fj) += weights[e] * r.stiffness(i, j);
+      }
+    }
+    expected_energy += weights[e] * r.energy;
+    scale += weights[e] * r.force.norm();
+  }
+  // Element stiffnesses equal to round-off of their largest entry (hex8_element_test), summed in
+  // the same order: 1e-12 of the largest entry, as there.
+  const Eigen::MatrixXd K_dense = K.to_dense();
+  const double largest = expected_K.cwiseAbs().maxCoeff();
+  EXPECT_LT((K_dense - expected_K).cwiseAbs().maxCoeff(), 1e-12 * largest);
+  // As the residual path (BatchedResidual).
+  EXPECT_LT((f - expected_f).norm(), 1e-13 * scale);
+  EXPECT_NEAR(energy, expected_energy, 1e-13 * std::abs(expected_energy));
+}
+
+INSTANTIATE_TEST_SUITE_P(
+    UncoupledMaterials, BatchedTangent,
+    ::testing::Values(BatchCase{"mooney_rivlin5", Formulation::mean_dilatation, 1.0},
+                      BatchCase{"mooney_rivlin5", Formulation::standard, 1.0},
+                      BatchCase{"mooney_rivlin5", Formulation::mean_dilatation, 1.5},
+                      BatchCase{"neo_hookean", Formulation::mean_dilatation, 1.0},
+                      BatchCase{"exponential", Formulation::standard, 1.5}),
+    [](const auto& info) {
+      return info.param.material +
+             (info.param.formulation == Formulation::standard ? "_standard" : "_mean_dilatation") +
+             (info.param.dilation > 1.0 ? "_dilated" : "");
+    });
+
 // The element loops on 2 threads evaluate elements in parallel but sum them in element order, so
 // force, tangent, energy and the reported smallest det F are the same bits as on 1 thread; with
 // element weights (muscle stiffening) and when an element is inverted too.
@@ -226,7 +302,7 @@ TEST(SolidModel, TwoThreadsGiveBitForBitTheResultOfOne) {
 
   struct Result {
     Vector f, f_weighted;
-    std::vector<double> K;
+    std::vector<double> K, K_weighted;
     double energy = 0.0;
     double min_J = 0.0;
   };
@@ -241,6 +317,10 @@ TEST(SolidModel, TwoThreadsGiveBitForBitTheResultOfOne) {
     r.K = K.values();
     r.f_weighted = Vector::Zero(u.size());
     EXPECT_TRUE(model.add_weighted(u, weights, r.f_weighted, nullptr).ok);
+    Vector f_weighted = Vector::Zero(u.size());
+    SymmetricMatrix K_weighted(model.pattern());
+    EXPECT_TRUE(model.add_weighted(u, weights, f_weighted, &K_weighted).ok);
+    r.K_weighted = K_weighted.values();
     return r;
   };
   const Result one = evaluate(1), two = evaluate(2);
@@ -249,6 +329,7 @@ TEST(SolidModel, TwoThreadsGiveBitForBitTheResultOfOne) {
   EXPECT_EQ(one.energy, two.energy);
   EXPECT_EQ(one.min_J, two.min_J);
   EXPECT_EQ(one.f_weighted, two.f_weighted);
+  EXPECT_EQ(one.K_weighted, two.K_weighted);
 
   // Inverting one element: both report the same first inverted element.
   Vector crushed = u;
@@ -263,6 +344,17 @@ TEST(SolidModel, TwoThreadsGiveBitForBitTheResultOfOne) {
   EXPECT_FALSE(s1.ok);
   EXPECT_FALSE(s2.ok);
   EXPECT_EQ(s1.inverted_element, s2.inverted_element);
+  SymmetricMatrix K(model.pattern());
+  model.set_threads(1);
+  const AssemblyStatus t1 = model.assemble(crushed, f, &K);
+  model.set_threads(2);
+  const AssemblyStatus t2 = model.assemble(crushed, f, &K);
+  EXPECT_FALSE(t1.ok);
+  EXPECT_FALSE(t2.ok);
+  EXPECT_EQ(t1.inverted_element, s1.inverted_element);
+  EXPECT_EQ(t2.inverted_element, s1.inverted_element);
+  EXPECT_EQ(t1.min_J, s1.min_J);
+  EXPECT_EQ(t2.min_J, s1.min_J);
   EXPECT_THROW(model.set_threads(0), std::invalid_argument);
 }
 
@@ -294,6 +386,12 @@ TEST(SolidModel, InvertedElementIsReported) {
   EXPECT_FALSE(status.ok);
   EXPECT_EQ(status.inverted_element, mesh.num_elements() - 1);
   EXPECT_LE(status.min_J, 0.0);
+  // The same through the tangent path.
+  SymmetricMatrix K(model.pattern());
+  const AssemblyStatus with_tangent = model.assemble(u, f, &K);
+  EXPECT_FALSE(with_tangent.ok);
+  EXPECT_EQ(with_tangent.inverted_element, mesh.num_elements() - 1);
+  EXPECT_LE(with_tangent.min_J, 0.0);
 }
 
 // u^T M u for a rigid unit translation is the kinetic-energy mass of the body.
