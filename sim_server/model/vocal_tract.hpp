@@ -24,7 +24,7 @@ struct VocalTractGaps {
   double alveolar_ridge = 0.002;   // m, along the tongue's outward normal at rest
   double hard_palate = 0.003;      // m
   double upper_teeth = 0.003;      // m
-  double velum = 0.003;            // m
+  double velum = 0.002;            // m
   double pharyngeal_wall = 0.007;  // m
 };
 
