@@ -10,6 +10,7 @@
 
 #include "fem/assembly/loads.hpp"
 #include "scene/scene_reader.hpp"
+#include "support/box_scenes.hpp"
 #include "support/temp_dir_test.hpp"
 
 namespace tongue::scene {
@@ -17,18 +18,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A 40 x 10 x 10 mm neo-Hookean box, 4 x 1 x 1 elements (5 x 2 x 2 = 20 nodes); tests append
-// sections.
-const char* const kBox = R"(
-mesh:
-  box: {size: [0.04, 0.01, 0.01], divisions: [4, 1, 1]}
-material:
-  type: neo_hookean
-  parameters: {shear_modulus: 5000}
-  density: 1000
-analysis:
-  type: static
-)";
+const char* const kBox = testing::kStaticBoxScene;
 
 BuiltScene build(const std::string& extra) {
   return build_scene(parse_scene(std::string(kBox) + extra, "", "test.yaml"));

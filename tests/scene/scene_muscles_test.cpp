@@ -127,8 +127,8 @@ TEST(TongueSceneReader, TongueAndMuscleSetsCanBeNamed) {
 
 TEST(TongueSceneReader, ShippedTongueScenesParse) {
   // Tests run in the source directory of this test (tongue_add_test's WORKING_DIRECTORY).
-  for (const char* name :
-       {"tongue_rest", "tongue_sg_3n", "tongue_ggp_4n", "tongue_sl_1n", "tongue_all_max"}) {
+  for (const char* name : {"tongue_rest", "tongue_sg_3n", "tongue_ggp_4n", "tongue_sl_1n",
+                           "tongue_all_max", "tongue_i", "tongue_k"}) {
     SCOPED_TRACE(name);
     const Scene s = read_scene(std::string("../../scenes/") + name + ".yaml");
     EXPECT_TRUE(std::holds_alternative<TongueMeshSpec>(s.mesh));

@@ -7,6 +7,7 @@
 #include "scene/scene_builder.hpp"
 #include "scene/scene_error_expectations.hpp"
 #include "scene/scene_reader.hpp"
+#include "support/box_scenes.hpp"
 #include "support/temp_dir_test.hpp"
 
 namespace tongue::scene {
@@ -15,16 +16,7 @@ namespace {
 using scene_test::expect_build_error;
 using scene_test::expect_parse_error;
 
-// A 40 x 10 x 10 mm box with its corner at the origin; tests append sections.
-const char* const kBox = R"(
-mesh:
-  box: {size: [0.04, 0.01, 0.01], divisions: [4, 1, 1]}
-material:
-  type: neo_hookean
-  parameters: {shear_modulus: 5000}
-analysis:
-  type: static
-)";
+const char* const kBox = testing::kStaticBoxScene;
 
 // A square of 100 x 100 file units in the plane z = 0, normal +z (a floor).
 const char* const kFloorObj = "v -50 -50 0\nv 50 -50 0\nv 50 50 0\nv -50 50 0\nf 1 2 3\nf 1 3 4\n";

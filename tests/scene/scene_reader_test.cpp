@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <string>
 
+#include "support/box_scenes.hpp"
 #include "support/temp_dir_test.hpp"
 
 namespace tongue::scene {
@@ -18,15 +19,7 @@ void expect_error(const std::string& text, const std::string& key_path,
 }
 
 // The smallest runnable scene; the error tests each break one thing in a copy of it.
-const char* const kMinimal = R"(
-mesh:
-  box: {size: [0.04, 0.01, 0.01], divisions: [4, 1, 1]}
-material:
-  type: neo_hookean
-  parameters: {shear_modulus: 5000}
-analysis:
-  type: static
-)";
+const char* const kMinimal = testing::kStaticBoxScene;
 
 // A fresh temporary directory per test, for mesh files and scene files.
 class TempDir : public testing::TempDirTest {};

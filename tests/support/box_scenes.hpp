@@ -4,6 +4,19 @@
 
 namespace tongue::testing {
 
+// The smallest runnable scene: a 40 x 10 x 10 mm neo-Hookean box, 4 x 1 x 1 elements (5 x 2 x 2
+// = 20 nodes, the corner at the origin), static, nothing acting on it; tests append sections or
+// break one thing in a copy of it.
+inline constexpr const char* kStaticBoxScene = R"(
+mesh:
+  box: {size: [0.04, 0.01, 0.01], divisions: [4, 1, 1]}
+material:
+  type: neo_hookean
+  parameters: {shear_modulus: 5000}
+analysis:
+  type: static
+)";
+
 // A 40 x 10 x 10 mm block, 4 x 1 x 1 elements (20 nodes), clamped at x = 0, under gravity, with
 // one listed muscle along the free end; dynamic, dt 2 ms: a step takes well under a millisecond.
 inline constexpr const char* kBoxScene = R"(
