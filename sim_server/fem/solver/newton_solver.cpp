@@ -25,7 +25,7 @@ constexpr double kFirstContraction = 0.5;
 // the tongue), so that beyond this many re-forming the factor (about 10 ms) is cheaper.
 constexpr int kMaxCorrections = 96;
 // Rank-one terms this close count as the same: directions within 8 degrees, stiffnesses within
-// a quarter of the larger.
+// a factor 4.
 constexpr double kCloseDirection = 0.99;
 constexpr double kCloseStiffness = 0.75;
 // Rounds of engaging the springs a correction would carry into contact, each a solve more.
@@ -63,20 +63,20 @@ void NewtonSolver::forget_factor() {
   factored_terms_.clear();
   candidates_.clear();
   corrections_.clear();
-  computed_.clear();
+  columns_.clear();
 }
 
 void NewtonSolver::add_correction(const RankOneTerm& term, double sign) {
-  auto known = std::find_if(computed_.begin(), computed_.end(),
-                            [&](const Correction& c) { return c.term == term; });
-  if (known == computed_.end()) {
+  const auto known = std::find_if(columns_.begin(), columns_.end(),
+                                  [&](const Column& c) { return c.term == term; });
+  int column = static_cast<int>(known - columns_.begin());
+  if (known == columns_.end()) {
     Vector u = Vector::Zero(tangent_.pattern().size);
     for (int c = 0; c < 3; ++c)
       if (term.index[c] >= 0) u[term.index[c]] = term.direction[c];
-    computed_.push_back({term, 1.0, linear_solver_.solve(u)});
-    known = computed_.end() - 1;
+    columns_.push_back({term, linear_solver_.solve(u)});
   }
-  corrections_.push_back({term, sign, known->z});
+  corrections_.push_back({column, sign});
 }
 
 void NewtonSolver::update_capacitance() {
@@ -84,9 +84,10 @@ void NewtonSolver::update_capacitance() {
   if (k == 0) return;
   Eigen::MatrixXd C(k, k);
   for (int i = 0; i < k; ++i)
-    for (int j = 0; j < k; ++j) C(i, j) = apply(corrections_[i].term, corrections_[j].z);
+    for (int j = 0; j < k; ++j)
+      C(i, j) = apply(term(corrections_[i]), columns_[corrections_[j].column].z);
   for (int i = 0; i < k; ++i)
-    C(i, i) += 1.0 / (corrections_[i].sign * corrections_[i].term.stiffness);
+    C(i, i) += 1.0 / (corrections_[i].sign * term(corrections_[i]).stiffness);
   capacitance_.compute(C);
 }
 
@@ -123,8 +124,8 @@ bool NewtonSolver::correct_factor(NonlinearProblem& problem, const Vector& x,
   if (static_cast<int>(wanted.size()) > kMaxCorrections) return false;
   const bool same = wanted.size() == corrections_.size() &&
                     std::equal(wanted.begin(), wanted.end(), corrections_.begin(),
-                               [](const auto& w, const Correction& c) {
-                                 return w.first == c.term && w.second == c.sign;
+                               [&](const auto& w, const Correction& c) {
+                                 return w.first == term(c) && w.second == c.sign;
                                });
   if (same) return true;
   const auto start = Clock::now();
@@ -135,11 +136,10 @@ bool NewtonSolver::correct_factor(NonlinearProblem& problem, const Vector& x,
   return true;
 }
 
-bool NewtonSolver::engage_candidates(const Vector& r, Vector& dx, NewtonReport& report) {
+void NewtonSolver::engage_candidates(const Vector& r, Vector& dx, NewtonReport& report) {
   // An engaged spring acts from its gap on: its force k (gap + v . dx) enters the linear model
   // of the residual as k gap v beside the tangent's k v v^T.
   Vector r_model = r;
-  bool changed = false;
   for (int round = 0; round < kEngageRounds && !candidates_.empty(); ++round) {
     if (static_cast<int>(corrections_.size()) >= kMaxCorrections) break;
     const auto start = Clock::now();
@@ -148,9 +148,9 @@ bool NewtonSolver::engage_candidates(const Vector& r, Vector& dx, NewtonReport& 
       if (c->gap + apply(*c, dx) < 0.0 && static_cast<int>(corrections_.size()) < kMaxCorrections) {
         for (int i = 0; i < 3; ++i)
           if (c->index[i] >= 0) r_model[c->index[i]] += c->stiffness * c->gap * c->direction[i];
-        RankOneTerm term = *c;
-        term.gap = 0.0;
-        add_correction(term, 1.0);
+        RankOneTerm engaged_term = *c;
+        engaged_term.gap = 0.0;
+        add_correction(engaged_term, 1.0);
         c = candidates_.erase(c);
         engaged = true;
       } else {
@@ -161,9 +161,7 @@ bool NewtonSolver::engage_candidates(const Vector& r, Vector& dx, NewtonReport& 
     update_capacitance();
     dx = direction(r_model);
     report.solve_seconds += seconds_since(start);
-    changed = true;
   }
-  return changed;
 }
 
 Vector NewtonSolver::direction(const Vector& r) const {
@@ -177,9 +175,10 @@ Vector NewtonSolver::direction(const Vector& r) const {
   Vector z = linear_solver_.solve(q);
   if (!corrections_.empty()) {
     Eigen::VectorXd w(corrections_.size());
-    for (std::size_t j = 0; j < corrections_.size(); ++j) w[j] = apply(corrections_[j].term, z);
+    for (std::size_t j = 0; j < corrections_.size(); ++j) w[j] = apply(term(corrections_[j]), z);
     const Eigen::VectorXd t = capacitance_.solve(w);
-    for (std::size_t j = 0; j < corrections_.size(); ++j) z -= t[j] * corrections_[j].z;
+    for (std::size_t j = 0; j < corrections_.size(); ++j)
+      z -= t[j] * columns_[corrections_[j].column].z;
   }
   for (std::size_t i = 0; i < updates_.size(); ++i) {
     const double beta = updates_[i].inverse_curvature * updates_[i].y.dot(z);
@@ -210,7 +209,7 @@ bool NewtonSolver::refactorize(NonlinearProblem& problem, const Vector& x, Vecto
   contraction_ = -1.0;
   updates_.clear();
   corrections_.clear();
-  computed_.clear();
+  columns_.clear();
   problem.rank_one_terms(x, terms_);
   split_terms();
   factored_terms_ = terms_;

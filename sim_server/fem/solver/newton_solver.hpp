@@ -95,13 +95,16 @@ class NewtonSolver {
   //   (A + U D U^T)^-1 = A^-1 - Z (D^-1 + U^T Z)^-1 Z^T,  Z = A^-1 U,
   // each column of Z one solve with A, kept while A lives.
   std::vector<RankOneTerm> factored_terms_;  // the terms A holds
-  struct Correction {
+  struct Column {
     RankOneTerm term;
-    double sign = 1.0;  // +1: added to A, -1: taken out of it
-    Vector z;           // A^-1 u
+    Vector z;  // A^-1 u
+  };
+  std::vector<Column> columns_;  // every column of Z solved for with this factor
+  struct Correction {
+    int column;   // in columns_
+    double sign;  // +1: added to A, -1: taken out of it
   };
   std::vector<Correction> corrections_;               // in force: U, D and Z
-  std::vector<Correction> computed_;                  // every column computed with this factor
   Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_;  // D^-1 + U^T Z
   std::vector<RankOneTerm> terms_;                    // scratch
   std::vector<RankOneTerm> candidates_;               // terms not engaged at the current iterate
@@ -111,11 +114,11 @@ class NewtonSolver {
   bool correct_factor(NonlinearProblem& problem, const Vector& x, NewtonReport& report);
   // Adds the correction of a term, solving for its column of Z unless known.
   void add_correction(const RankOneTerm& term, double sign);
+  const RankOneTerm& term(const Correction& c) const { return columns_[c.column].term; }
   void update_capacitance();
   // Engages the candidate terms that the correction dx would carry past their gap (a node
-  // moving into an obstacle) and solves again with them, a few rounds at most; true when it
-  // changed dx.
-  bool engage_candidates(const Vector& r, Vector& dx, NewtonReport& report);
+  // moving into an obstacle) and solves again with them, a few rounds at most.
+  void engage_candidates(const Vector& r, Vector& dx, NewtonReport& report);
   // Counts and times the residual evaluations of one solve.
   struct Residuals {
     NonlinearProblem& problem;
