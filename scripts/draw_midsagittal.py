@@ -46,7 +46,8 @@ try:
     from matplotlib.patches import Patch
 
     from run_file import (LANDMARKS, Run, RunError, area_centroid, boundary_edges,
-                          boundary_faces, chain_edges, midsagittal_section, nearest_faces)
+                          boundary_faces, chain_edges, midsagittal_section, nearest_faces,
+                          plane_section)
 except ImportError as error:  # pragma: no cover - depends on the interpreter
     sys.exit("draw_midsagittal: %s (run with /usr/bin/python3 and python3-h5py, "
              "python3-numpy, python3-matplotlib installed)" % error)
@@ -60,6 +61,8 @@ FINAL_LINE = "#000000"
 SETTLED_LINE = "#7a7a7a"
 REST_MARK = "#1f5fa8"
 FINAL_MARK = "#c0392b"
+OBSTACLE_LINE = "#1b6f3a"
+CONTACT_MARK = "#e67e22"
 
 
 # ---------------------------------------------------------------------------------------------
@@ -188,12 +191,31 @@ def draw_section(run, filename, frame, muscles, out):
     ax.add_collection(LineCollection(final_outline, colors=FINAL_LINE, linewidths=2.0,
                                      capstyle="round", joinstyle="round", zorder=6))
 
+    # Obstacles (their section by the plane z = 0) and the midsagittal nodes in contact.
+    obstacle_segments = []
+    for name, (vertices, triangles) in run.obstacles.items():
+        segments = [seg[:, :2] * 1e3 for seg in plane_section(vertices, triangles)]
+        if not segments:
+            continue
+        obstacle_segments.extend(segments)
+        ax.add_collection(LineCollection(segments, colors=OBSTACLE_LINE, linewidths=2.2,
+                                         capstyle="round", zorder=6))
+        middle = segments[len(segments) // 2].mean(axis=0)
+        ax.annotate(name.replace("_", " "), xy=middle, xytext=(4, 6), textcoords="offset points",
+                    fontsize=7, color=OBSTACLE_LINE, zorder=10)
+    in_contact = sorted(set(int(n) for n in run.contact_nodes(filename, frame))
+                        & set(int(n) for n in run.node_sets.get("midsagittal", [])))
+    if in_contact:
+        ax.plot(final_xy[in_contact, 0], final_xy[in_contact, 1], marker="o", markersize=4.0,
+                color=CONTACT_MARK, linestyle="none", zorder=9)
+
     # Landmarks.
     present = [(name, int(run.node_sets[name][0])) for name in LANDMARKS
                if name in run.node_sets and len(run.node_sets[name])
                and 0 <= run.node_sets[name][0] < len(run.rest)]
     section_nodes = sorted(set().union(*map(set, loops)))
-    all_xy = np.vstack([rest_xy[section_nodes], final_xy[section_nodes]])
+    all_xy = np.vstack([rest_xy[section_nodes], final_xy[section_nodes]]
+                       + ([np.vstack(obstacle_segments)] if obstacle_segments else []))
     center = area_centroid([rest_xy[list(l)] for l in loops])
     span = np.ptp(all_xy, axis=0).max()
     for name, n in present:
@@ -244,6 +266,11 @@ def draw_section(run, filename, frame, muscles, out):
                               label="frame 0 (settled)"))
     handles.append(Line2D([], [], color=FINAL_LINE, linewidth=2.0,
                           label="shape at t = %.1f ms" % t_ms))
+    if obstacle_segments:
+        handles.append(Line2D([], [], color=OBSTACLE_LINE, linewidth=2.2, label="obstacles"))
+    if in_contact:
+        handles.append(Line2D([], [], marker="o", markersize=4.0, color=CONTACT_MARK,
+                              linestyle="none", label="in contact at t"))
     if present:
         handles.append(Line2D([], [], marker="o", markersize=5.5, markerfacecolor="white",
                               markeredgecolor=REST_MARK, markeredgewidth=1.4, linestyle="none",

@@ -114,6 +114,18 @@ class Run:
                     mf = np.ravel(np.asarray(h5["/muscles/max_force"][()], float))
                     if len(mf) == len(self.muscle_names):
                         self.max_force = mf
+            # Obstacles (scenes with contact): name -> (vertices [V x 3] m, triangles [F x 3]).
+            self.obstacles = {}
+            if "/obstacles/names" in h5:
+                for name in (decode(s) for s in np.ravel(h5["/obstacles/names"][()])):
+                    v = np.asarray(read_dataset(h5, "/obstacles/%s/vertices" % name, base, 2, 3),
+                                   float)
+                    t = np.asarray(read_dataset(h5, "/obstacles/%s/triangles" % name, base, 2, 3),
+                                   np.int64)
+                    if t.size and (t.min() < 0 or t.max() >= len(v)):
+                        raise RunError("%s: /obstacles/%s/triangles refer to vertices outside "
+                                       "0..%d" % (base, name, len(v) - 1))
+                    self.obstacles[name] = (v, t)
             # Read the frames needed now, while the file is open.
             self._load_frame(0)
             self._load_frame(self.num_frames - 1)
@@ -129,6 +141,14 @@ class Run:
             with h5py.File(filename, "r") as h5:
                 self.frames[k] = np.asarray(h5["/positions"][k], float)
         return self.frames[k]
+
+    def contact_nodes(self, filename, k):
+        """Nodes the obstacles push on in frame k (none without /contact)."""
+        with h5py.File(filename, "r") as h5:
+            if "/contact/node_force" not in h5:
+                return np.zeros(0, np.int64)
+            f = np.asarray(h5["/contact/node_force"][k], float)
+        return np.flatnonzero(np.abs(f).sum(axis=1) > 0.0)
 
     def trajectories(self, nodes):
         """Positions of the given nodes at every frame [T x len(nodes) x 3] (m)."""
@@ -280,3 +300,17 @@ def boundary_faces(elements):
             seen[key] = (loop, e)
     return [v for v in seen.values() if v is not None]
 
+
+def plane_section(vertices, triangles, axis=2, value=0.0):
+    """Segments where the triangles cross the plane x[axis] = value: a list of 2 x 3 arrays."""
+    segments = []
+    d = vertices[:, axis] - value
+    for tri in triangles:
+        points = []
+        for a, b in ((tri[0], tri[1]), (tri[1], tri[2]), (tri[2], tri[0])):
+            if (d[a] < 0.0) != (d[b] < 0.0):
+                s = d[a] / (d[a] - d[b])
+                points.append(vertices[a] + s * (vertices[b] - vertices[a]))
+        if len(points) == 2:
+            segments.append(np.array(points))
+    return segments

@@ -288,7 +288,8 @@ class BatchRun {
   void write_frame(double time, const fem::Vector& u, const run_file::MuscleFrame& muscles,
                    const run_file::SolverFigures& figures) {
     if (!log_) return;
-    log_->append(time, built().solid->rest_positions() + u, figures, muscles);
+    log_->append(time, built().solid->rest_positions() + u, figures, muscles,
+                 scene_run::scene_contact_frame(built(), u));
   }
 
   // Largest nodal displacement, volume change and penetration of an obstacle seen so far.

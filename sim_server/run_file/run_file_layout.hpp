@@ -23,6 +23,14 @@
 //   /muscles/fibres/origin        [F x 3]  double  m, fixed bony attachment, NaN when none
 //   /muscles/fibres/node_offsets  [F + 1]  int32   fibre f is nodes[node_offsets[f] ..
 //   /muscles/fibres/nodes         [sum]    int32   node_offsets[f + 1]), 0-based, in order
+// With O > 0 obstacles (omitted without):
+//   /obstacles/names                 [O]          string  the obstacles' order below
+//   /obstacles/<name>/vertices       [V x 3]      double  m
+//   /obstacles/<name>/triangles      [F x 3]      int32   0-based vertex indices, normals (right-
+//                                                         hand rule) toward the solid
+//   /contact/node_force              [T x N x 3]  double  N, force of the obstacles on each node
+//   /contact/obstacle_force          [T x O x 3]  double  N, force of the solid on each obstacle
+//   /contact/max_penetration         [T]          double  m, deepest penetration of a node
 //   root attributes: format_version (int), length_unit = "m", time_unit, scene_text (the YAML),
 //                    plus string attributes set while running (status, resets, ...).
 // Every dataset has a "units" and a "description" attribute. The time-indexed datasets are
@@ -63,6 +71,13 @@ inline constexpr const char* kFibreOrigin = "/muscles/fibres/origin";
 inline constexpr const char* kFibreNodeOffsets = "/muscles/fibres/node_offsets";
 inline constexpr const char* kFibreNodes = "/muscles/fibres/nodes";
 
+inline constexpr const char* kObstacles = "/obstacles";
+inline constexpr const char* kObstacleNames = "/obstacles/names";
+inline constexpr const char* kContact = "/contact";
+inline constexpr const char* kContactNodeForce = "/contact/node_force";
+inline constexpr const char* kContactObstacleForce = "/contact/obstacle_force";
+inline constexpr const char* kContactMaxPenetration = "/contact/max_penetration";
+
 // Attributes of the root group ("/").
 inline constexpr const char* kRoot = "/";
 inline constexpr const char* kFormatVersionAttribute = "format_version";
@@ -80,6 +95,13 @@ inline std::string node_set(const std::string& name) {
 }
 inline std::string element_set(const std::string& name) {
   return std::string(kElementSets) + "/" + name;
+}
+
+inline std::string obstacle_vertices(const std::string& name) {
+  return std::string(kObstacles) + "/" + name + "/vertices";
+}
+inline std::string obstacle_triangles(const std::string& name) {
+  return std::string(kObstacles) + "/" + name + "/triangles";
 }
 
 }  // namespace tongue::run_file::layout

@@ -26,6 +26,7 @@ struct Frame {
   Eigen::VectorXd positions;
   SolverFigures figures;
   MuscleFrame muscles;
+  ContactFrame contact;
 };
 struct Attribute {
   std::string name, value;
@@ -104,7 +105,7 @@ struct RunFileQueue::State {
         [&](auto& x) {
           using T = std::decay_t<decltype(x)>;
           if constexpr (std::is_same_v<T, Frame>)
-            writer->append(x.time, x.positions, x.figures, x.muscles);
+            writer->append(x.time, x.positions, x.figures, x.muscles, x.contact);
           else if constexpr (std::is_same_v<T, Attribute>)
             writer->set_attribute(x.name, x.value);
           else
@@ -174,6 +175,7 @@ RunFileQueue::RunFileQueue(std::unique_ptr<RunFileWriter> writer, std::size_t ca
   path_ = writer->path();
   num_nodes_ = writer->num_nodes();
   num_muscles_ = writer->num_muscles();
+  num_obstacles_ = writer->num_obstacles();
   s_->written = writer->frames();
   s_->writer = std::move(writer);
   s_->capacity = capacity;
@@ -210,8 +212,10 @@ RunFileQueue::~RunFileQueue() {
 }
 
 void RunFileQueue::append(double time, const Eigen::VectorXd& positions,
-                          const SolverFigures& figures, const MuscleFrame& muscles) {
-  RunFileWriter::check_frame(path_, num_nodes_, num_muscles_, positions, muscles);
+                          const SolverFigures& figures, const MuscleFrame& muscles,
+                          const ContactFrame& contact) {
+  RunFileWriter::check_frame(path_, num_nodes_, num_muscles_, num_obstacles_, positions, muscles,
+                             contact);
   Frame f = s_->take_spare();
   f.time = time;
   copy_into(f.positions, positions);
@@ -219,6 +223,9 @@ void RunFileQueue::append(double time, const Eigen::VectorXd& positions,
   copy_into(f.muscles.activations, muscles.activations);
   copy_into(f.muscles.lengths, muscles.lengths);
   copy_into(f.muscles.velocities, muscles.velocities);
+  copy_into(f.contact.node_forces, contact.node_forces);
+  copy_into(f.contact.obstacle_forces, contact.obstacle_forces);
+  f.contact.max_penetration = contact.max_penetration;
   s_->push(std::move(f), path_);
 }
 

@@ -59,7 +59,7 @@ class RunFileQueue {
   // As RunFileWriter::append, queued (copied). Wrong sizes throw std::invalid_argument here, at
   // once.
   void append(double time, const Eigen::VectorXd& positions, const SolverFigures& figures,
-              const MuscleFrame& muscles = {});
+              const MuscleFrame& muscles = {}, const ContactFrame& contact = {});
   // As RunFileWriter::set_attribute, queued: it lands after the frames queued before it.
   void set_attribute(std::string name, std::string value);
   // Flushes the file after everything queued before, and waits until that is done.
@@ -72,6 +72,7 @@ class RunFileQueue {
   int frames() const;
   int num_nodes() const { return num_nodes_; }
   int num_muscles() const { return num_muscles_; }
+  int num_obstacles() const { return num_obstacles_; }
   const std::string& path() const { return path_; }
 
  private:
@@ -81,6 +82,7 @@ class RunFileQueue {
   std::string path_;
   int num_nodes_ = 0;
   int num_muscles_ = 0;
+  int num_obstacles_ = 0;
   std::unique_ptr<State> s_;
 };
 

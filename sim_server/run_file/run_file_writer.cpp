@@ -31,13 +31,17 @@ struct FrameSeries {
 struct MuscleSeries {
   Id activations, length, velocity;
 };
+struct ContactSeries {
+  Id node_force, obstacle_force, max_penetration;
+};
 
 }  // namespace
 
 struct RunFileWriter::Handles {
   Id file;
   FrameSeries frames;
-  MuscleSeries muscles;  // only with muscles
+  MuscleSeries muscles;   // only with muscles
+  ContactSeries contact;  // only with obstacles
 };
 
 namespace {
@@ -322,14 +326,50 @@ MuscleSeries create_muscle_series(const Writer& w, hid_t file, hsize_t num_muscl
   return s;
 }
 
+// The group /obstacles: names, and each obstacle's vertices and triangles.
+void write_obstacles(const Writer& w, hid_t file,
+                     const std::vector<ObstacleDescription>& obstacles) {
+  const Id group = w.group(file, L::kObstacles);
+  std::vector<std::string> names;
+  for (const ObstacleDescription& o : obstacles) {
+    names.push_back(o.name);
+    const Id own = w.group(group.get(), o.name);
+    w.fixed(file, L::obstacle_vertices(o.name), H5T_IEEE_F64LE, H5T_NATIVE_DOUBLE,
+            {o.vertices.size(), 3}, o.vertices.data(), "m", "vertex positions");
+    w.fixed(file, L::obstacle_triangles(o.name), H5T_STD_I32LE, H5T_NATIVE_INT,
+            {o.triangles.size(), 3}, o.triangles.data(), "1",
+            "0-based vertex indices of each triangle, its normal (right-hand rule) toward the "
+            "solid");
+  }
+  w.strings(file, L::kObstacleNames, names, "obstacle names, in the order of /contact datasets");
+}
+
+// The contact forces and penetration, each empty until the first append.
+ContactSeries create_contact_series(const Writer& w, hid_t file, hsize_t num_nodes,
+                                    hsize_t num_obstacles, int deflate_level) {
+  const Id group = w.group(file, L::kContact);
+  const hsize_t chunk = std::clamp<hsize_t>(65536 / (3 * num_nodes * sizeof(double)), 1, 1024);
+  ContactSeries s;
+  s.node_force = w.series(file, L::kContactNodeForce, H5T_IEEE_F64LE, {num_nodes, 3}, chunk,
+                          deflate_level, "N", "force of the obstacles on each node");
+  s.obstacle_force = w.series(file, L::kContactObstacleForce, H5T_IEEE_F64LE, {num_obstacles, 3},
+                              1024, deflate_level, "N", "force of the solid on each obstacle");
+  s.max_penetration =
+      w.series(file, L::kContactMaxPenetration, H5T_IEEE_F64LE, {}, 1024, deflate_level, "m",
+               "deepest penetration of a node into an obstacle");
+  return s;
+}
+
 }  // namespace
 
 RunFileWriter::RunFileWriter(const std::string& path, const MeshDescription& mesh,
                              const std::string& scene_text, const RunFileOptions& options,
-                             const std::vector<MuscleDescription>& muscles)
+                             const std::vector<MuscleDescription>& muscles,
+                             const std::vector<ObstacleDescription>& obstacles)
     : path_(path),
       num_nodes_(static_cast<int>(mesh.nodes.size())),
       num_muscles_(static_cast<int>(muscles.size())),
+      num_obstacles_(static_cast<int>(obstacles.size())),
       flush_interval_(options.flush_interval),
       h_(std::make_unique<Handles>()) {
   create_parent_directories(path);
@@ -345,6 +385,12 @@ RunFileWriter::RunFileWriter(const std::string& path, const MeshDescription& mes
     write_muscles(w, file, muscles);
     h_->muscles =
         create_muscle_series(w, file, static_cast<hsize_t>(num_muscles_), options.deflate_level);
+  }
+  if (num_obstacles_ > 0) {
+    write_obstacles(w, file, obstacles);
+    h_->contact =
+        create_contact_series(w, file, static_cast<hsize_t>(num_nodes_),
+                              static_cast<hsize_t>(num_obstacles_), options.deflate_level);
   }
   w.check(H5Fflush(file, H5F_SCOPE_LOCAL), "flush");
   last_flush_ = now_seconds();
@@ -376,7 +422,8 @@ RunFileWriter::~RunFileWriter() {
 }
 
 void RunFileWriter::check_frame(const std::string& path, int num_nodes, int num_muscles,
-                                const Eigen::VectorXd& positions, const MuscleFrame& muscles) {
+                                int num_obstacles, const Eigen::VectorXd& positions,
+                                const MuscleFrame& muscles, const ContactFrame& contact) {
   if (positions.size() != 3 * num_nodes)
     throw std::invalid_argument(path + ": positions have " + std::to_string(positions.size()) +
                                 " entries, expected 3 x " + std::to_string(num_nodes));
@@ -386,11 +433,21 @@ void RunFileWriter::check_frame(const std::string& path, int num_nodes, int num_
         throw std::invalid_argument(path + ": a muscle frame has " + std::to_string(v->size()) +
                                     " entries, expected " + std::to_string(num_muscles));
   }
+  if (num_obstacles > 0) {
+    if (contact.node_forces.size() != 3 * num_nodes ||
+        contact.obstacle_forces.size() != 3 * num_obstacles)
+      throw std::invalid_argument(path + ": a contact frame has " +
+                                  std::to_string(contact.node_forces.size()) + " node and " +
+                                  std::to_string(contact.obstacle_forces.size()) +
+                                  " obstacle entries, expected 3 x " + std::to_string(num_nodes) +
+                                  " and 3 x " + std::to_string(num_obstacles));
+  }
 }
 
 void RunFileWriter::append(double time, const Eigen::VectorXd& positions,
-                           const SolverFigures& figures, const MuscleFrame& muscles) {
-  check_frame(path_, num_nodes_, num_muscles_, positions, muscles);
+                           const SolverFigures& figures, const MuscleFrame& muscles,
+                           const ContactFrame& contact) {
+  check_frame(path_, num_nodes_, num_muscles_, num_obstacles_, positions, muscles, contact);
   const QuietErrors quiet;
   const Writer w(path_);
   const auto frame = static_cast<hsize_t>(frames_);
@@ -407,6 +464,14 @@ void RunFileWriter::append(double time, const Eigen::VectorXd& positions,
              L::kMuscleLength);
     w.append(h_->muscles.velocity.get(), frame, H5T_NATIVE_DOUBLE, muscles.velocities.data(),
              L::kMuscleVelocity);
+  }
+  if (num_obstacles_ > 0) {
+    w.append(h_->contact.node_force.get(), frame, H5T_NATIVE_DOUBLE, contact.node_forces.data(),
+             L::kContactNodeForce);
+    w.append(h_->contact.obstacle_force.get(), frame, H5T_NATIVE_DOUBLE,
+             contact.obstacle_forces.data(), L::kContactObstacleForce);
+    w.append(h_->contact.max_penetration.get(), frame, H5T_NATIVE_DOUBLE, &contact.max_penetration,
+             L::kContactMaxPenetration);
   }
   // time last: a reader that sees T times finds T frames in every other dataset.
   w.append(h_->frames.time.get(), frame, H5T_NATIVE_DOUBLE, &time, L::kTime);

@@ -44,6 +44,22 @@ struct MuscleFrame {
   Eigen::VectorXd velocities;   // m/s
 };
 
+// A rigid obstacle as the run file describes it.
+struct ObstacleDescription {
+  std::string name;
+  std::vector<std::array<double, 3>> vertices;  // m
+  std::vector<std::array<int, 3>> triangles;    // 0-based vertex indices, normals toward the solid
+};
+
+// The contact of one frame with O obstacles: the force the obstacles exert on each node
+// (3 N entries, n-major; zero off contact) and the force the solid exerts on each obstacle
+// (3 O entries) [N], and the deepest penetration [m].
+struct ContactFrame {
+  Eigen::VectorXd node_forces;
+  Eigen::VectorXd obstacle_forces;
+  double max_penetration = 0.0;
+};
+
 // Solver figures of one frame: totals over the steps since the previous frame.
 struct SolverFigures {
   int iterations = 0;
@@ -65,16 +81,18 @@ class RunFileWriter {
   // Throws RunFileError (naming the file and the operation) when HDF5 fails.
   RunFileWriter(const std::string& path, const MeshDescription& mesh, const std::string& scene_text,
                 const RunFileOptions& options = RunFileOptions{},
-                const std::vector<MuscleDescription>& muscles = {});
+                const std::vector<MuscleDescription>& muscles = {},
+                const std::vector<ObstacleDescription>& obstacles = {});
   ~RunFileWriter();  // flushes and closes; never throws
   RunFileWriter(const RunFileWriter&) = delete;
   RunFileWriter& operator=(const RunFileWriter&) = delete;
 
   // positions: current node positions flattened as 3 n + c [m], 3 N entries. muscles: required
-  // (each vector of size M) when the log has muscles, ignored otherwise. Throws
-  // std::invalid_argument for wrong sizes, RunFileError when HDF5 fails.
+  // (each vector of size M) when the log has muscles, ignored otherwise; contact likewise with
+  // obstacles (3 N and 3 O entries). Throws std::invalid_argument for wrong sizes, RunFileError
+  // when HDF5 fails.
   void append(double time, const Eigen::VectorXd& positions, const SolverFigures& figures,
-              const MuscleFrame& muscles = {});
+              const MuscleFrame& muscles = {}, const ContactFrame& contact = {});
   // A string attribute on the root group, replaced if it exists.
   void set_attribute(const std::string& name, const std::string& value);
   void flush();
@@ -82,11 +100,13 @@ class RunFileWriter {
   // The check append makes before writing anything, for a caller that holds the sizes itself
   // (RunFileQueue checks a frame on its caller's thread, without the writer).
   static void check_frame(const std::string& path, int num_nodes, int num_muscles,
-                          const Eigen::VectorXd& positions, const MuscleFrame& muscles);
+                          int num_obstacles, const Eigen::VectorXd& positions,
+                          const MuscleFrame& muscles, const ContactFrame& contact);
 
   int frames() const { return frames_; }
   int num_nodes() const { return num_nodes_; }
   int num_muscles() const { return num_muscles_; }
+  int num_obstacles() const { return num_obstacles_; }
   const std::string& path() const { return path_; }
 
  private:
@@ -94,6 +114,7 @@ class RunFileWriter {
   std::string path_;
   int num_nodes_ = 0;
   int num_muscles_ = 0;
+  int num_obstacles_ = 0;
   int frames_ = 0;
   double flush_interval_ = 1.0;
   double last_flush_ = 0.0;  // steady-clock seconds

@@ -674,6 +674,8 @@ class Parser : private common::YamlReader {
       ObstacleFileSpec spec;
       const YAML::Node name_node = required(o, o_path, "name");
       spec.name = name(name_node, child_path(o_path, "name"));
+      if (spec.name == "names")  // the run file's list of obstacles sits beside them
+        fail(child_path(o_path, "name"), "'names' is reserved; choose another name", name_node);
       for (const auto& other : scene.obstacles.files)
         if (other.name == spec.name)
           fail(child_path(o_path, "name"), "obstacle '" + spec.name + "' is defined twice",

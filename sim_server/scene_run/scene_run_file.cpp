@@ -50,8 +50,16 @@ std::unique_ptr<run_file::RunFileWriter> open_scene_run_file(const std::string& 
       muscles.push_back(std::move(d));
     }
   }
+  std::vector<run_file::ObstacleDescription> obstacles;
+  if (built.contact) {
+    for (const auto& o : built.contact->obstacles()) {
+      run_file::ObstacleDescription d{o->name(), {}, o->surface().triangles};
+      for (const fem::Vec3& v : o->surface().vertices) d.vertices.push_back({v.x(), v.y(), v.z()});
+      obstacles.push_back(std::move(d));
+    }
+  }
   auto log = std::make_unique<run_file::RunFileWriter>(path, mesh_description(built.solid->mesh()),
-                                                       scene.text, options, muscles);
+                                                       scene.text, options, muscles, obstacles);
   log->set_attribute("analysis", dynamic ? "dynamic" : "static");
   // What frame 0 shows, so that pictures can compare the end with rest under gravity.
   log->set_attribute("initial_state",
@@ -72,6 +80,20 @@ run_file::MuscleFrame scene_muscle_frame(const scene::BuiltScene& built, const f
   frame.activations = m.activations();
   frame.lengths = m.muscle_lengths(u);
   frame.velocities = v ? m.muscle_velocities(u, *v) : fem::Vector::Zero(m.num_muscles()).eval();
+  return frame;
+}
+
+run_file::ContactFrame scene_contact_frame(const scene::BuiltScene& built, const fem::Vector& u) {
+  run_file::ContactFrame frame;
+  if (!built.contact) return frame;
+  const fem::ContactReport report = built.contact->report(u);
+  frame.node_forces = fem::Vector::Zero(u.size());
+  frame.obstacle_forces = fem::Vector::Zero(3 * built.contact->obstacles().size());
+  for (const fem::NodeContact& c : report.contacts)
+    frame.node_forces.segment<3>(3 * c.node) += c.force;
+  for (std::size_t o = 0; o < report.obstacle_force.size(); ++o)
+    frame.obstacle_forces.segment<3>(3 * o) = report.obstacle_force[o];
+  frame.max_penetration = report.max_penetration;
   return frame;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 // The run file of a scene's run, shared by sim_batch and sim_server: the log opened with the
-// scene's mesh, text and muscles, and the per-muscle values of one frame.
+// scene's mesh, text, muscles and obstacles, and the per-muscle and contact values of a frame.
 #include <memory>
 #include <string>
 
@@ -24,5 +24,9 @@ std::unique_ptr<run_file::RunFileWriter> open_scene_run_file(const std::string& 
 // velocity v (null: at rest, zero velocities); empty vectors without muscles.
 run_file::MuscleFrame scene_muscle_frame(const scene::BuiltScene& built, const fem::Vector& u,
                                          const fem::Vector* v);
+
+// The contact at displacement u (the forces of the obstacles on the nodes, of the solid on each
+// obstacle, the deepest penetration); empty vectors without obstacles.
+run_file::ContactFrame scene_contact_frame(const scene::BuiltScene& built, const fem::Vector& u);
 
 }  // namespace tongue::scene_run

@@ -425,7 +425,7 @@ void ServerLoop::log_frame() {
   const fem::StepReport& r = last_.report;
   positions_.noalias() = run_.built().solid->rest_positions() + run_.displacement();
   log_->append(run_.time(), positions_, {r.iterations, r.final_residual, r.wall_seconds, r.cuts},
-               last_.muscles);
+               last_.muscles, scene_run::scene_contact_frame(run_.built(), run_.displacement()));
 }
 
 }  // namespace tongue::server

@@ -40,12 +40,20 @@ std::vector<MuscleDescription> muscles() {
   return {{"GGa", 10.0, {with_origin, without}}, {"SG", 5.0, {without}}};
 }
 
+// Two obstacles: a triangle and a square of two triangles.
+std::vector<ObstacleDescription> obstacles() {
+  return {
+      {"ridge", {{0, 0, 0.01}, {0.01, 0, 0.01}, {0, 0.01, 0.01}}, {{0, 1, 2}}},
+      {"wall", {{0, 0, 0}, {0, 0.01, 0}, {0, 0.01, 0.01}, {0, 0, 0.01}}, {{0, 1, 2}, {0, 2, 3}}}};
+}
+
 // Frame k: values that tell the frames apart (and a NaN-free, exactly representable pattern).
 struct Frame {
   double time;
   Eigen::VectorXd positions;
   SolverFigures figures;
   MuscleFrame muscles;
+  ContactFrame contact;
 };
 Frame frame(int k, int nodes) {
   Frame f;
@@ -55,12 +63,16 @@ Frame frame(int k, int nodes) {
   f.muscles.activations = Eigen::Vector2d(0.01 * k, 0.5);
   f.muscles.lengths = Eigen::Vector2d(0.03, 0.04 + 1e-5 * k);
   f.muscles.velocities = Eigen::Vector2d(-1e-3 * k, 0.0);
+  f.contact.node_forces = Eigen::VectorXd::Zero(3 * nodes);
+  f.contact.node_forces[1] = 0.25 * k;
+  f.contact.obstacle_forces = Eigen::VectorXd::LinSpaced(6, -k, k);
+  f.contact.max_penetration = 1e-6 * k;
   return f;
 }
 
 std::unique_ptr<RunFileWriter> writer(const fs::path& path, int nodes) {
   return std::make_unique<RunFileWriter>(path.string(), mesh(nodes), "scene: text\n",
-                                         RunFileOptions{}, muscles());
+                                         RunFileOptions{}, muscles(), obstacles());
 }
 
 // Every object of the file, by name, and whether it is a dataset.
@@ -170,7 +182,7 @@ TEST_F(RunFileQueueTest, WritesTheFileTheWriterWrites) {
     w->set_attribute("status", "running");
     for (int k = 0; k < count; ++k) {
       const Frame f = frame(k, nodes);
-      w->append(f.time, f.positions, f.figures, f.muscles);
+      w->append(f.time, f.positions, f.figures, f.muscles, f.contact);
       if (k == 100) w->set_attribute("material_warning", "step 100: lost");
     }
     w->set_attribute("status", "completed");
@@ -182,7 +194,7 @@ TEST_F(RunFileQueueTest, WritesTheFileTheWriterWrites) {
     RunFileQueue q(std::move(w), 16);
     for (int k = 0; k < count; ++k) {
       Frame f = frame(k, nodes);
-      q.append(f.time, std::move(f.positions), f.figures, std::move(f.muscles));
+      q.append(f.time, std::move(f.positions), f.figures, std::move(f.muscles), f.contact);
       if (k == 100) q.set_attribute("material_warning", "step 100: lost");
     }
     q.set_attribute("status", "completed");
@@ -190,8 +202,18 @@ TEST_F(RunFileQueueTest, WritesTheFileTheWriterWrites) {
     EXPECT_EQ(q.frames(), count);
   }
   expect_same_file(direct, queued);
-  EXPECT_EQ(RunFileReader(queued.string()).shape(layout::kPositions),
-            (std::vector<std::size_t>{count, nodes, 3}));
+  const RunFileReader read(queued.string());
+  EXPECT_EQ(read.shape(layout::kPositions), (std::vector<std::size_t>{count, nodes, 3}));
+  // The obstacles as described, the contact frames as appended.
+  EXPECT_EQ(read.strings(layout::kObstacleNames), (std::vector<std::string>{"ridge", "wall"}));
+  EXPECT_EQ(read.ints(layout::obstacle_triangles("wall")), (std::vector<int>{0, 1, 2, 0, 2, 3}));
+  EXPECT_EQ(read.doubles(layout::obstacle_vertices("ridge"))[3], 0.01);
+  EXPECT_EQ(read.shape(layout::kContactNodeForce), (std::vector<std::size_t>{count, nodes, 3}));
+  EXPECT_EQ(read.shape(layout::kContactObstacleForce), (std::vector<std::size_t>{count, 2, 3}));
+  const Frame last = frame(count - 1, nodes);
+  EXPECT_EQ(read.doubles(layout::kContactNodeForce)[(count - 1) * nodes * 3 + 1],
+            last.contact.node_forces[1]);
+  EXPECT_EQ(read.doubles(layout::kContactMaxPenetration).back(), last.contact.max_penetration);
   EXPECT_TRUE(fs::exists(dir_ / "queued.xmf"));
 }
 
@@ -203,7 +225,7 @@ TEST_F(RunFileQueueTest, AFullQueueBlocksTheProducerAndLosesNothing) {
     RunFileQueue q(writer(path, nodes), capacity);
     for (int k = 0; k < count; ++k) {
       Frame f = frame(k, nodes);
-      q.append(f.time, std::move(f.positions), f.figures, std::move(f.muscles));
+      q.append(f.time, std::move(f.positions), f.figures, std::move(f.muscles), f.contact);
       // At most `capacity` frames wait and one is being written: the producer was held back.
       ASSERT_GE(q.frames(), k + 1 - static_cast<int>(capacity) - 1) << k;
     }
@@ -242,10 +264,10 @@ TEST_F(RunFileQueueTest, AnErrorOnTheWorkerReachesTheCallerOnceAsTheWritersError
   }
   EXPECT_NO_THROW(q.flush());  // reported once
   const Frame f = frame(0, nodes);
-  q.append(f.time, f.positions, f.figures, f.muscles);  // the file still takes frames
+  q.append(f.time, f.positions, f.figures, f.muscles, f.contact);  // the file still takes frames
   q.set_attribute("", "again");
   EXPECT_THROW(q.close(), RunFileError);
-  EXPECT_THROW(q.append(f.time, f.positions, f.figures, f.muscles), std::logic_error);
+  EXPECT_THROW(q.append(f.time, f.positions, f.figures, f.muscles, f.contact), std::logic_error);
   EXPECT_EQ(RunFileReader(path.string()).shape(layout::kTime), std::vector<std::size_t>{1});
 }
 
@@ -253,9 +275,12 @@ TEST_F(RunFileQueueTest, AFrameOfTheWrongSizeIsRefusedAtOnceAsByTheWriter) {
   const int nodes = 8;
   RunFileQueue q(writer(dir_ / "run.h5", nodes));
   const Frame f = frame(0, nodes);
-  EXPECT_THROW(q.append(f.time, Eigen::VectorXd::Zero(5), f.figures, f.muscles),
+  EXPECT_THROW(q.append(f.time, Eigen::VectorXd::Zero(5), f.figures, f.muscles, f.contact),
                std::invalid_argument);
-  EXPECT_THROW(q.append(f.time, f.positions, f.figures, MuscleFrame{}), std::invalid_argument);
+  EXPECT_THROW(q.append(f.time, f.positions, f.figures, MuscleFrame{}, f.contact),
+               std::invalid_argument);
+  EXPECT_THROW(q.append(f.time, f.positions, f.figures, f.muscles, ContactFrame{}),
+               std::invalid_argument);
   q.flush();
   EXPECT_EQ(q.frames(), 0);
 }
@@ -267,7 +292,7 @@ TEST_F(RunFileQueueTest, AttributesLandAfterTheFramesQueuedBeforeThem) {
   RunFileQueue q(writer(path, nodes), 64);
   for (int k = 0; k < count; ++k) {
     Frame f = frame(k, nodes);
-    q.append(f.time, std::move(f.positions), f.figures, std::move(f.muscles));
+    q.append(f.time, std::move(f.positions), f.figures, std::move(f.muscles), f.contact);
   }
   q.set_attribute("", "fails on the worker");
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
@@ -296,7 +321,7 @@ TEST_F(RunFileQueueTest, TheDestructorDrainsTheQueueAndClosesTheFile) {
     RunFileQueue q(writer(path, nodes), 1000);
     for (int k = 0; k < count; ++k) {
       Frame f = frame(k, nodes);
-      q.append(f.time, std::move(f.positions), f.figures, std::move(f.muscles));
+      q.append(f.time, std::move(f.positions), f.figures, std::move(f.muscles), f.contact);
     }
     q.set_attribute("status", "completed");
   }

@@ -45,7 +45,7 @@ def box_mesh(n=2, size=0.01):
     return np.array(nodes), np.array(elements, dtype=np.int32), idx
 
 
-def write_run(path, midsagittal=True, drop=None, muscles=True):
+def write_run(path, midsagittal=True, drop=None, muscles=True, obstacle=False):
     rest, elements, idx = box_mesh()
     final = rest.copy()
     # Deform: the top (y = 10 mm) moves back by 2 mm and up by 1.5 mm, scaled by the height.
@@ -74,6 +74,19 @@ def write_run(path, midsagittal=True, drop=None, muscles=True):
             f.create_dataset("/muscles/names", data=np.array(names, dtype=h5py.string_dtype()))
             f.create_dataset("/muscles/max_force", data=np.array([1.5, 1.5, 1.0]))
             f.create_dataset("/activations", data=np.array([[0.0, 0.0, 0.0], [1.0, 1.0, 0.0]]))
+        if obstacle:
+            # A roof at y = 12 mm over the box, across z = 0 (its section a line from x = -5 to
+            # 15 mm); the top midsagittal nodes pressed on it in frame 1.
+            v = np.array([[-0.005, 0.012, -0.01], [0.015, 0.012, -0.01], [0.015, 0.012, 0.01],
+                          [-0.005, 0.012, 0.01]])
+            f.create_dataset("/obstacles/names", data=np.array(["roof"], dtype=h5py.string_dtype()))
+            f.create_dataset("/obstacles/roof/vertices", data=v)
+            f.create_dataset("/obstacles/roof/triangles",
+                             data=np.array([[0, 2, 1], [0, 3, 2]], np.int32))
+            force = np.zeros((2, len(rest), 3))
+            for i in range(3):
+                force[1, idx(i, 2, 1), 1] = -0.1
+            f.create_dataset("/contact/node_force", data=force)
 
 
 def run_script(*args):
@@ -145,6 +158,19 @@ class DrawMidsagittalTest(unittest.TestCase):
         self.assertEqual(result.returncode, 0, result.stderr)
         self.assertIn("crossing z = 0", result.stdout)
         self.assertTrue(os.path.isfile(out))
+
+    def test_obstacles_and_contact_nodes_are_drawn(self):
+        run = self.path("roof.h5")
+        write_run(run, obstacle=True)
+        out = self.path("roof.png")
+        result = run_script(run, "-o", out, "--frame", "1")
+        self.assertEqual(result.returncode, 0, result.stderr)
+        image = mpimg.imread(out)[..., :3]
+        # The obstacle's line (#1b6f3a) and the contact marks (#e67e22) are there.
+        for colour, what in ((0x1b6f3a, "obstacle line"), (0xe67e22, "contact marks")):
+            rgb = np.array([(colour >> 16) & 255, (colour >> 8) & 255, colour & 255]) / 255.0
+            self.assertGreater(float(np.mean(np.abs(image - rgb).max(axis=-1) < 0.05)), 1e-4,
+                               what)
 
     def test_missing_dataset_is_named_and_fails(self):
         for dataset in ("/positions", "/elements", "/rest_positions", "/time"):
