@@ -27,12 +27,13 @@ constexpr int kMaxCorrections = 96;
 // Rank-one terms this close count as the same: directions within 8 degrees, stiffnesses within
 // a factor 4.
 constexpr double kCloseDirection = 0.99;
-constexpr double kCloseStiffness = 0.75;
+constexpr double kCloseStiffness = 4.0;
 // Rounds of engaging the springs a correction would carry into contact, each a solve more.
 constexpr int kEngageRounds = 3;
 
-// u^T y for the sparse u of a term.
-double apply(const RankOneTerm& t, const Vector& y) {
+// u^T y for the sparse u of a term or a column: its direction on its unknowns.
+template <typename Sparse>
+double along(const Sparse& t, const Vector& y) {
   double sum = 0.0;
   for (int c = 0; c < 3; ++c)
     if (t.index[c] >= 0) sum += t.direction[c] * y[t.index[c]];
@@ -66,17 +67,18 @@ void NewtonSolver::forget_factor() {
   columns_.clear();
 }
 
-void NewtonSolver::add_correction(const RankOneTerm& term, double sign) {
-  const auto known = std::find_if(columns_.begin(), columns_.end(),
-                                  [&](const Column& c) { return c.term == term; });
-  int column = static_cast<int>(known - columns_.begin());
+void NewtonSolver::add_correction(const RankOneTerm& term, double stiffness) {
+  const auto known = std::find_if(columns_.begin(), columns_.end(), [&](const Column& c) {
+    return c.index == term.index && c.direction == term.direction;
+  });
+  const int column = static_cast<int>(known - columns_.begin());
   if (known == columns_.end()) {
     Vector u = Vector::Zero(tangent_.pattern().size);
     for (int c = 0; c < 3; ++c)
       if (term.index[c] >= 0) u[term.index[c]] = term.direction[c];
-    columns_.push_back({term, linear_solver_.solve(u)});
+    columns_.push_back({term.index, term.direction, linear_solver_.solve(u)});
   }
-  corrections_.push_back({column, sign});
+  corrections_.push_back({column, stiffness});
 }
 
 void NewtonSolver::update_capacitance() {
@@ -85,9 +87,8 @@ void NewtonSolver::update_capacitance() {
   Eigen::MatrixXd C(k, k);
   for (int i = 0; i < k; ++i)
     for (int j = 0; j < k; ++j)
-      C(i, j) = apply(term(corrections_[i]), columns_[corrections_[j].column].z);
-  for (int i = 0; i < k; ++i)
-    C(i, i) += 1.0 / (corrections_[i].sign * term(corrections_[i]).stiffness);
+      C(i, j) = along(columns_[corrections_[i].column], columns_[corrections_[j].column].z);
+  for (int i = 0; i < k; ++i) C(i, i) += 1.0 / corrections_[i].stiffness;
   capacitance_.compute(C);
 }
 
@@ -103,34 +104,42 @@ bool NewtonSolver::correct_factor(NonlinearProblem& problem, const Vector& x,
                                   NewtonReport& report) {
   problem.rank_one_terms(x, terms_);
   split_terms();
-  // A term close to one of the factor's on the same unknowns is left to the iteration, as the
-  // rest of the tangent's change is; one that changed more is taken out and put in anew.
-  const auto close = [](const RankOneTerm& a, const RankOneTerm& b) {
-    return a.index == b.index && a.direction.dot(b.direction) > kCloseDirection &&
-           std::abs(a.stiffness - b.stiffness) <=
-               kCloseStiffness * std::max(a.stiffness, b.stiffness);
+  // A term on the same unknowns and about the same direction as one of the factor's, with a
+  // stiffness within a factor kCloseStiffness of it, is left to the iteration, as the rest of
+  // the tangent's change is; one that changed more is corrected by the difference, a new one
+  // added, and one that is gone taken out.
+  const auto same_place = [](const RankOneTerm& a, const RankOneTerm& b) {
+    return a.index == b.index && a.direction.dot(b.direction) > kCloseDirection;
   };
-  std::vector<std::pair<RankOneTerm, double>> wanted;  // (term, sign)
+  std::vector<std::pair<RankOneTerm, double>> wanted;  // (term, change of stiffness)
   for (const RankOneTerm& t : terms_) {
     const auto f = std::find_if(factored_terms_.begin(), factored_terms_.end(),
-                                [&](const RankOneTerm& o) { return close(t, o); });
-    if (f == factored_terms_.end()) wanted.push_back({t, 1.0});
+                                [&](const RankOneTerm& o) { return same_place(t, o); });
+    if (f == factored_terms_.end()) {
+      wanted.push_back({t, t.stiffness});
+    } else if (std::max(t.stiffness, f->stiffness) >
+               kCloseStiffness * std::min(t.stiffness, f->stiffness)) {
+      wanted.push_back({t, t.stiffness - f->stiffness});
+    }
   }
   for (const RankOneTerm& t : factored_terms_) {
     const auto now = std::find_if(terms_.begin(), terms_.end(),
-                                  [&](const RankOneTerm& o) { return close(t, o); });
-    if (now == terms_.end()) wanted.push_back({t, -1.0});
+                                  [&](const RankOneTerm& o) { return same_place(t, o); });
+    if (now == terms_.end()) wanted.push_back({t, -t.stiffness});
   }
   if (static_cast<int>(wanted.size()) > kMaxCorrections) return false;
   const bool same = wanted.size() == corrections_.size() &&
                     std::equal(wanted.begin(), wanted.end(), corrections_.begin(),
                                [&](const auto& w, const Correction& c) {
-                                 return w.first == term(c) && w.second == c.sign;
+                                 const Column& col = columns_[c.column];
+                                 return w.first.index == col.index &&
+                                        w.first.direction == col.direction &&
+                                        w.second == c.stiffness;
                                });
   if (same) return true;
   const auto start = Clock::now();
   corrections_.clear();
-  for (const auto& [term, sign] : wanted) add_correction(term, sign);
+  for (const auto& [term, change] : wanted) add_correction(term, change);
   update_capacitance();
   report.solve_seconds += seconds_since(start);
   return true;
@@ -145,12 +154,10 @@ void NewtonSolver::engage_candidates(const Vector& r, Vector& dx, NewtonReport& 
     const auto start = Clock::now();
     bool engaged = false;
     for (auto c = candidates_.begin(); c != candidates_.end();) {
-      if (c->gap + apply(*c, dx) < 0.0 && static_cast<int>(corrections_.size()) < kMaxCorrections) {
+      if (c->gap + along(*c, dx) < 0.0 && static_cast<int>(corrections_.size()) < kMaxCorrections) {
         for (int i = 0; i < 3; ++i)
           if (c->index[i] >= 0) r_model[c->index[i]] += c->stiffness * c->gap * c->direction[i];
-        RankOneTerm engaged_term = *c;
-        engaged_term.gap = 0.0;
-        add_correction(engaged_term, 1.0);
+        add_correction(*c, c->stiffness);
         c = candidates_.erase(c);
         engaged = true;
       } else {
@@ -175,7 +182,8 @@ Vector NewtonSolver::direction(const Vector& r) const {
   Vector z = linear_solver_.solve(q);
   if (!corrections_.empty()) {
     Eigen::VectorXd w(corrections_.size());
-    for (std::size_t j = 0; j < corrections_.size(); ++j) w[j] = apply(term(corrections_[j]), z);
+    for (std::size_t j = 0; j < corrections_.size(); ++j)
+      w[j] = along(columns_[corrections_[j].column], z);
     const Eigen::VectorXd t = capacitance_.solve(w);
     for (std::size_t j = 0; j < corrections_.size(); ++j)
       z -= t[j] * columns_[corrections_[j].column].z;

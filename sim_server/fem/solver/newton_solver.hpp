@@ -90,19 +90,22 @@ class NewtonSolver {
   };
   std::vector<Update> updates_;
   // Rank-one corrections of the reused factor A for the problem's rank-one terms that changed
-  // since it was formed (contact springs engaging, +k v v^T, or releasing, -k v v^T), solved by
-  // the Sherman-Morrison-Woodbury formula (Golub & Van Loan 2013, sec. 2.1.4):
+  // since it was formed (contact springs engaging, +k v v^T, releasing, -k v v^T, or stiffening
+  // or softening by a large factor, +(k - k0) v v^T), solved by the Sherman-Morrison-Woodbury
+  // formula (Golub & Van Loan 2013, sec. 2.1.4):
   //   (A + U D U^T)^-1 = A^-1 - Z (D^-1 + U^T Z)^-1 Z^T,  Z = A^-1 U,
-  // each column of Z one solve with A, kept while A lives.
+  // each column of Z one solve with A for one direction u on its unknowns, kept while A lives
+  // (D holds the stiffness changes, which need no solve).
   std::vector<RankOneTerm> factored_terms_;  // the terms A holds
   struct Column {
-    RankOneTerm term;
+    std::array<int, 3> index;
+    Vec3 direction;
     Vector z;  // A^-1 u
   };
   std::vector<Column> columns_;  // every column of Z solved for with this factor
   struct Correction {
-    int column;   // in columns_
-    double sign;  // +1: added to A, -1: taken out of it
+    int column;        // in columns_
+    double stiffness;  // the change of k along the column's direction [N/m], non-zero
   };
   std::vector<Correction> corrections_;               // in force: U, D and Z
   Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_;  // D^-1 + U^T Z
@@ -112,9 +115,9 @@ class NewtonSolver {
   // Brings corrections_ up to the problem's engaged terms at x; false when more would be
   // needed than re-forming the factor costs.
   bool correct_factor(NonlinearProblem& problem, const Vector& x, NewtonReport& report);
-  // Adds the correction of a term, solving for its column of Z unless known.
-  void add_correction(const RankOneTerm& term, double sign);
-  const RankOneTerm& term(const Correction& c) const { return columns_[c.column].term; }
+  // Adds a change of stiffness along a term's direction, solving for its column of Z unless
+  // known.
+  void add_correction(const RankOneTerm& term, double stiffness);
   void update_capacitance();
   // Engages the candidate terms that the correction dx would carry past their gap (a node
   // moving into an obstacle) and solves again with them, a few rounds at most.
