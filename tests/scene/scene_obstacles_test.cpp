@@ -80,6 +80,12 @@ TEST_F(SceneObstacles, BadFilesAreNamed) {
             "f 1 2 3 4\nf 8 7 6 5\nf 5 6 2 1\nf 6 7 3 2\nf 7 8 4 3\nf 8 5 1 4\n");
   expect_build_error(std::string(kBox) + "obstacles: [{name: cube, file: " + inside_out + "}]\n",
                      "obstacles (cube)", "inward normals");
+  // A triangle whose corners lie on one line.
+  const std::string flat = write("flat.obj", "v 0 1 0\nv 1 1 0\nv 2 1 0\nf 1 2 3\n");
+  expect_build_error(std::string(kBox) + "obstacles: [{name: flat, file: " + flat + "}]\n",
+                     "obstacles (flat)", "degenerate");
+  expect_build_error(std::string(kBox) + "obstacles: [{name: flat, file: " + flat + "}]\n",
+                     "obstacles (flat)", flat);
 }
 
 TEST(SceneVocalTract, BuiltInTongueGetsItsFourSurfaces) {
