@@ -168,6 +168,7 @@ class BatchRun {
     fem::Vector u = fem::Vector::Zero(built().solid->num_dofs());
     set_activations(0.0);
     initial_u_ = u;
+    track(u);
     write_frame(0.0, u, scene_run::scene_muscle_frame(built(), u, nullptr), {});
     Tally tally;
     header("incr", "lambda [1]");
@@ -284,12 +285,12 @@ class BatchRun {
     if (built().muscles) built().muscles->set_activations(built().activations.levels_at(t));
   }
 
-  // v: nodal velocities, null for a static frame (at rest).
+  // The frame of displacement u, after track(u): its contact is the one track found.
   void write_frame(double time, const fem::Vector& u, const run_file::MuscleFrame& muscles,
                    const run_file::SolverFigures& figures) {
     if (!log_) return;
     log_->append(time, built().solid->rest_positions() + u, figures, muscles,
-                 scene_run::scene_contact_frame(built(), u));
+                 scene_run::scene_contact_frame(built(), last_contact_));
   }
 
   // Largest nodal displacement, volume change and penetration of an obstacle seen so far.

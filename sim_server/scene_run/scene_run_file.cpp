@@ -84,10 +84,15 @@ run_file::MuscleFrame scene_muscle_frame(const scene::BuiltScene& built, const f
 }
 
 run_file::ContactFrame scene_contact_frame(const scene::BuiltScene& built, const fem::Vector& u) {
+  if (!built.contact) return {};
+  return scene_contact_frame(built, built.contact->report(u));
+}
+
+run_file::ContactFrame scene_contact_frame(const scene::BuiltScene& built,
+                                           const fem::ContactReport& report) {
   run_file::ContactFrame frame;
   if (!built.contact) return frame;
-  const fem::ContactReport report = built.contact->report(u);
-  frame.node_forces = fem::Vector::Zero(u.size());
+  frame.node_forces = fem::Vector::Zero(built.solid->num_dofs());
   frame.obstacle_forces = fem::Vector::Zero(3 * built.contact->obstacles().size());
   for (const fem::NodeContact& c : report.contacts)
     frame.node_forces.segment<3>(3 * c.node) += c.force;

@@ -28,5 +28,8 @@ run_file::MuscleFrame scene_muscle_frame(const scene::BuiltScene& built, const f
 // The contact at displacement u (the forces of the obstacles on the nodes, of the solid on each
 // obstacle, the deepest penetration); empty vectors without obstacles.
 run_file::ContactFrame scene_contact_frame(const scene::BuiltScene& built, const fem::Vector& u);
+// The same from a report of the scene's contact already made.
+run_file::ContactFrame scene_contact_frame(const scene::BuiltScene& built,
+                                           const fem::ContactReport& report);
 
 }  // namespace tongue::scene_run

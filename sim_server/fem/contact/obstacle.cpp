@@ -90,6 +90,7 @@ Obstacle::Obstacle(std::string name, TriangleSurface surface)
       box_max_ = box_max_.cwiseMax(V[k]);
     }
   const double diagonal2 = (box_max_ - box_min_).squaredNorm();
+  on_surface_ = 1e-12 * std::sqrt(diagonal2);
 
   // Face normals; a degenerate triangle has none.
   face_normal_.resize(nt);
@@ -208,8 +209,7 @@ SurfacePoint Obstacle::closest(const Vec3& x) const {
   const double sign = offset.dot(pseudo) < 0.0 ? -1.0 : 1.0;
   s.distance = sign * d;
   // On the surface itself the direction of x - point is undefined; the pseudo-normal stands in.
-  s.normal =
-      d > 1e-12 * std::sqrt((box_max_ - box_min_).squaredNorm()) ? (sign / d) * offset : pseudo;
+  s.normal = d > on_surface_ ? (sign / d) * offset : pseudo;
   s.curvature = Mat3::Identity() - s.normal * s.normal.transpose();
   if (edge) {
     const Vec3 along = (V[tri[(on.index + 2) % 3]] - V[tri[(on.index + 1) % 3]]).normalized();

@@ -67,6 +67,7 @@ class Obstacle {
   TriangleSurface surface_;
   bool closed_ = false;
   Vec3 box_min_, box_max_;
+  double on_surface_ = 0.0;  // [m]: closer than this, x counts as on the surface (normal undefined)
   std::vector<Vec3> face_normal_;
   std::vector<std::array<Vec3, 3>> edge_normal_;  // [triangle][edge opposite vertex k]
   std::vector<std::array<bool, 3>> rim_edge_;     // edge of one triangle only
