@@ -96,6 +96,9 @@ struct Figures {
   double steps = 0, simulated = 0, run_wall = 0, rtf = 0, rtf_bus = 0;
   double physics = 0, run_file = 0, state_message = 0, loop = 0, server = 0, wall_step = 0,
          round_trip = 0;
+  // The physics' solver per step: iterations, factorizations, and its time [ms] in assembly
+  // (residuals and tangents), factorization and solves.
+  double iterations = 0, factorizations = 0, assembly = 0, factorization = 0, solve = 0;
   double rms_mm = std::numeric_limits<double>::quiet_NaN();  // against the reference; NaN: none
 };
 
@@ -211,6 +214,11 @@ Figures run_once(const Scenario& s, int threads, int port, const fs::path& folde
   f.state_message = timing_attribute(h5, "timing_state_message_ms");
   f.loop = timing_attribute(h5, "timing_loop_ms");
   f.server = f.physics + f.run_file + f.state_message + f.loop;
+  f.iterations = timing_attribute(h5, "timing_iterations");
+  f.factorizations = timing_attribute(h5, "timing_factorizations");
+  f.assembly = timing_attribute(h5, "timing_assembly_ms");
+  f.factorization = timing_attribute(h5, "timing_factorization_ms");
+  f.solve = timing_attribute(h5, "timing_solve_ms");
   // The server's span holds the steps and the N - 1 waits between them; the first wait (for the
   // controller to start) is before it.
   const double span = timing_attribute(h5, "timing_span_s");
@@ -241,7 +249,9 @@ Figures medians(const std::vector<Figures>& runs) {
   for (double Figures::*field :
        {&Figures::steps, &Figures::simulated, &Figures::run_wall, &Figures::rtf, &Figures::rtf_bus,
         &Figures::physics, &Figures::run_file, &Figures::state_message, &Figures::loop,
-        &Figures::server, &Figures::wall_step, &Figures::round_trip, &Figures::rms_mm}) {
+        &Figures::server, &Figures::wall_step, &Figures::round_trip, &Figures::rms_mm,
+        &Figures::iterations, &Figures::factorizations, &Figures::assembly,
+        &Figures::factorization, &Figures::solve}) {
     m.*field = of(field);
   }
   return m;
@@ -275,17 +285,20 @@ Options parse_options(int argc, char** argv) {
 void print_header(int runs) {
   std::printf(
       "closed loop, lock-step, one controller process; medians of %d run%s; per step in ms\n"
-      "%-10s %7s %5s %6s %6s %6s %7s | %7s %7s %7s %7s %7s | %7s %7s | %7s\n",
+      "%-10s %7s %5s %6s %6s %6s %7s | %7s %7s %7s %7s %7s | %7s %7s | %7s | %5s %5s %6s %6s "
+      "%6s\n",
       runs, runs == 1 ? "" : "s", "scenario", "threads", "steps", "sim_s", "wall_s", "RTF",
-      "RTF_bus", "physics", "runfile", "state", "loop", "server", "wall", "bus_rt", "RMS_mm");
+      "RTF_bus", "physics", "runfile", "state", "loop", "server", "wall", "bus_rt", "RMS_mm", "its",
+      "facts", "asm", "fact", "solve");
 }
 
 void print_row(const char* name, int threads, const Figures& f) {
   std::printf(
       "%-10s %7d %5.0f %6.3f %6.2f %6.3f %7.3f | %7.2f %7.3f %7.3f %7.3f %7.2f | %7.2f %7.2f | "
-      "%7.4f\n",
+      "%7.4f | %5.2f %5.3f %6.3f %6.3f %6.3f\n",
       name, threads, f.steps, f.simulated, f.run_wall, f.rtf, f.rtf_bus, f.physics, f.run_file,
-      f.state_message, f.loop, f.server, f.wall_step, f.round_trip, f.rms_mm);
+      f.state_message, f.loop, f.server, f.wall_step, f.round_trip, f.rms_mm, f.iterations,
+      f.factorizations, f.assembly, f.factorization, f.solve);
   std::fflush(stdout);
 }
 
@@ -297,7 +310,9 @@ const char* const kLegend =
     "(record the messages) and server (their sum): the run file's timing_*_ms, mean per step;\n"
     "wall: span / steps; bus_rt: (span - steps x server) / (steps - 1), the wait between steps\n"
     "(the state to the controller, its turn, the activation back); RMS_mm: nodal error against\n"
-    "the scenario's dt = 0.1 ms reference (nan: none; bash scripts/reference_runs.sh makes them)\n";
+    "the scenario's dt = 0.1 ms reference (nan: none; bash scripts/reference_runs.sh makes them);\n"
+    "its, facts: Newton iterations and factorizations per step; asm, fact, solve: the physics'\n"
+    "time per step in residual and tangent assembly, factorization and solves (timing_*)\n";
 
 }  // namespace
 

@@ -23,6 +23,7 @@
 #include "common/interrupt.hpp"
 #include "fem/assembly/ellipticity_monitor.hpp"
 #include "fem/integrator/static_solver.hpp"
+#include "fem/integrator/step_totals.hpp"
 #include "model/default_tongue.hpp"
 #include "run_file/run_file_queue.hpp"
 #include "scene/scene_builder.hpp"
@@ -87,24 +88,7 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
 }
 
 // Totals over the steps since the last logged frame, and over the whole run.
-struct Tally {
-  int steps = 0, iterations = 0, cuts = 0, factorizations = 0, residuals = 0;
-  double assembly = 0.0, factorization = 0.0, solve = 0.0;  // s
-  double wall = 0.0;                                        // s
-  double residual = 0.0;
-
-  void add(const fem::StepReport& r) {
-    ++steps;
-    iterations += r.iterations;
-    cuts += r.cuts;
-    factorizations += r.factorizations;
-    residuals += r.residual_evaluations;
-    assembly += r.assembly_seconds;
-    factorization += r.factorization_seconds;
-    solve += r.solve_seconds;
-    wall += r.wall_seconds;
-    residual = r.final_residual;
-  }
+struct Tally : fem::StepTotals {
   run_file::SolverFigures figures() const { return {iterations, residual, wall, cuts}; }
 };
 

@@ -368,6 +368,7 @@ void ServerLoop::take_step(const fem::Vector& levels) {
   timing_.start_step(mark);
   last_ = run_.step(dt, levels);
   mark = timing_.add(StepTiming::Part::physics, mark);
+  timing_.add_solver(last_.report);
   if (last_.ellipticity_loss) warn_material(*last_.ellipticity_loss);
   if (!last_.report.converged) {
     failure_ = "step " + std::to_string(from + 1) + " failed to converge: " + last_.report.message;

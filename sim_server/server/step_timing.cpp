@@ -91,9 +91,22 @@ double StepTiming::span_s() const {
 }
 
 std::string StepTiming::summary() const {
+  const SolverMeans m = solver_means();
+  char solver[224];
+  std::snprintf(solver, sizeof solver,
+                "; solver per step: %.3g iterations, %.3g factorizations, assembly %.3f ms, "
+                "factorization %.3f ms, solves %.3f ms",
+                m.iterations, m.factorizations, m.assembly_ms, m.factorization_ms, m.solve_ms);
   return "per step (" + std::to_string(count_) +
          " steps): " + parts_text([this](Part p) { return mean_ms(p); }) + " (mean; max " +
-         parts_text([this](Part p) { return max_ms(p); }) + "); " + span_text(span_s());
+         parts_text([this](Part p) { return max_ms(p); }) + "); " + span_text(span_s()) + solver;
+}
+
+StepTiming::SolverMeans StepTiming::solver_means() const {
+  if (solver_.steps == 0) return {};
+  const double n = solver_.steps;
+  return {solver_.iterations / n, solver_.factorizations / n, 1e3 * solver_.assembly / n,
+          1e3 * solver_.factorization / n, 1e3 * solver_.solve / n};
 }
 
 std::vector<std::pair<std::string, std::string>> StepTiming::attributes() const {
@@ -104,6 +117,12 @@ std::vector<std::pair<std::string, std::string>> StepTiming::attributes() const 
     out.emplace_back(name + "_ms", number(mean_ms(part)));
     out.emplace_back(name + "_max_ms", number(max_ms(part)));
   }
+  const SolverMeans m = solver_means();
+  out.emplace_back("timing_iterations", number(m.iterations));
+  out.emplace_back("timing_factorizations", number(m.factorizations));
+  out.emplace_back("timing_assembly_ms", number(m.assembly_ms));
+  out.emplace_back("timing_factorization_ms", number(m.factorization_ms));
+  out.emplace_back("timing_solve_ms", number(m.solve_ms));
   return out;
 }
 

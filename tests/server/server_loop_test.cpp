@@ -516,6 +516,20 @@ TEST_F(ServerLoopTest, TheRunFileCarriesThePerStepTiming) {
   EXPECT_GT(std::stod(f.string_attribute("/", "timing_physics_ms")), 0.0);
   EXPECT_GE(std::stod(f.string_attribute("/", "timing_physics_max_ms")),
             std::stod(f.string_attribute("/", "timing_physics_ms")));
+  // The solver's means per step: the iterations are those the frames count (frame 0 is the
+  // start, every later frame one step), and the physics time is split into non-negative parts.
+  const std::vector<int> iterations = f.ints("/solver/iterations");
+  ASSERT_EQ(iterations.size(), static_cast<std::size_t>(kSteps + 1));
+  double sum = 0.0;
+  for (std::size_t k = 1; k < iterations.size(); ++k) sum += iterations[k];
+  EXPECT_NEAR(std::stod(f.string_attribute("/", "timing_iterations")), sum / kSteps, 1e-5);
+  for (const char* name : {"timing_factorizations", "timing_assembly_ms",
+                           "timing_factorization_ms", "timing_solve_ms"}) {
+    const std::string text = f.string_attribute("/", name);
+    ASSERT_NE(text, "<missing>") << name;
+    EXPECT_GE(std::stod(text), 0.0) << name << " = " << text;
+  }
+  EXPECT_GE(std::stod(f.string_attribute("/", "timing_factorizations")), 1.0 / kSteps);
 }
 
 }  // namespace
