@@ -52,8 +52,7 @@ void EpController::start(const controller::Model& model) {
     laws_[m].rho_n = rho[m];
     laws_[m].max_force_n = model.muscle_max_forces[m];
   }
-  const long rounded = std::lround(settings_.delay_s / dt_);
-  history_.emplace(static_cast<int>(std::max(1L, rounded)));
+  history_.emplace(std::max(1.0, settings_.delay_s / dt_));
   lag_.emplace(names_.size(), settings_.force_lag_s, dt_);
 }
 
@@ -78,7 +77,7 @@ void EpController::observe(const controller::State& state) {
 }
 
 controller::MuscleLevels EpController::command(std::int64_t step) {
-  const Feedback& fb = history_->for_step(step);
+  const Feedback fb = history_->for_step(step);
   const double t = static_cast<double>(step) * dt_;
   last_.assign(names_.size(), MuscleCommand{});
   std::vector<double> law_levels(names_.size());
@@ -106,7 +105,7 @@ controller::MuscleLevels EpController::command(std::int64_t step) {
 std::string EpController::summary() const {
   char text[200];
   std::snprintf(text, sizeof text,
-                "delay %d steps (%.3g ms at dt %.3g ms), velocity factor %s, force lag %.3g ms",
+                "delay %.3g steps (%.3g ms at dt %.3g ms), velocity factor %s, force lag %.3g ms",
                 delay_steps(), delay_steps() * dt_ * 1e3, dt_ * 1e3,
                 settings_.velocity_factor ? "on" : "off", settings_.force_lag_s * 1e3);
   std::string s = text;

@@ -7,8 +7,9 @@
 //   controller is there from the start: after settling, the tongue at rest under gravity). With
 //   Delta-lambda 0 a muscle at rest has A = 0 and no force; it pulls only once stretched beyond
 //   its rest length (the stretch reflex), so the tongue at rest stays at rest.
-// - Delay: D = max(1, round(delay / dt)) steps; the command for step k + 1 uses the state of step
-//   k + 1 - D (at least one step: the state of step k + 1 is what the command produces).
+// - Delay: D = max(1, delay / dt) steps; the command for step k + 1 uses the feedback of step
+//   k + 1 - D (at least one step: the state of step k + 1 is what the command produces),
+//   interpolated between the states around it when D is not whole (delay_buffer.hpp).
 // - Time: lambda is taken at the end of the step it is for, t = (k + 1) dt, as a scene's
 //   activation schedule is.
 // - Force development: the levels sent follow the law's through a first-order lag
@@ -46,7 +47,7 @@ class EpController final : public controller::Controller {
   controller::MuscleLevels command(std::int64_t step) override;
   std::string summary() const override;
 
-  int delay_steps() const { return history_ ? history_->delay_steps() : 0; }
+  double delay_steps() const { return history_ ? history_->delay_steps() : 0.0; }
   // The law's figures for each muscle in the last command (model order), before the force lag.
   const std::vector<MuscleCommand>& last_commands() const { return last_; }
   const std::vector<MuscleLaw>& laws() const { return laws_; }

@@ -39,11 +39,33 @@ TEST(DelayBuffer, DelayOfOneUsesTheLatestState) {
   EXPECT_EQ(buffer.size(), 1u);
 }
 
-TEST(DelayBuffer, GapsUseTheLatestStateAtOrBeforeTheWantedOne) {
+TEST(DelayBuffer, GapsAreInterpolatedBetweenTheStatesAroundTheWantedOne) {
   DelayBuffer buffer(2);
   for (const std::int64_t k : {0, 5, 10, 15}) buffer.push(at(k));  // published every 5th step
-  EXPECT_EQ(buffer.for_step(16).step, 10);
+  const Feedback f = buffer.for_step(16);  // wants step 14: 4/5 of the way from 10 to 15
+  EXPECT_EQ(f.step, 10);
+  EXPECT_NEAR(f.lengths_m[0], at(14).lengths_m[0], 1e-15);
   EXPECT_EQ(buffer.for_step(17).step, 15);
+  EXPECT_EQ(buffer.for_step(17).lengths_m, at(15).lengths_m);
+}
+
+TEST(DelayBuffer, AFractionalDelayInterpolatesLengthsAndVelocities) {
+  DelayBuffer buffer(1.5);  // 12 ms at dt 8 ms
+  buffer.push(Feedback{0, {0.050}, {0.10}});
+  buffer.push(Feedback{1, {0.052}, {0.30}});
+  buffer.push(Feedback{2, {0.058}, {0.50}});
+  // The command for step 3 wants step 1.5.
+  const Feedback f = buffer.for_step(3);
+  EXPECT_EQ(f.step, 1);
+  EXPECT_NEAR(f.lengths_m[0], 0.055, 1e-15);
+  EXPECT_NEAR(f.velocities_m_s[0], 0.40, 1e-15);
+  // Step 0.5 is no longer needed by any later command: steps 1 and 2 are kept.
+  EXPECT_EQ(buffer.size(), 2u);
+}
+
+TEST(DelayBuffer, ADelayOffAWholeStepByRoundOffIsThatStep) {
+  const DelayBuffer buffer(0.011 / 0.0001);  // 109.99999999999999 in floating point
+  EXPECT_EQ(buffer.delay_steps(), 110.0);
 }
 
 TEST(DelayBuffer, AResetDropsTheLaterHistory) {
@@ -57,6 +79,7 @@ TEST(DelayBuffer, AResetDropsTheLaterHistory) {
 
 TEST(DelayBuffer, RejectsNoDelayAndEmptyUse) {
   EXPECT_THROW(DelayBuffer(0), std::invalid_argument);
+  EXPECT_THROW(DelayBuffer(0.5), std::invalid_argument);
   const DelayBuffer empty(2);
   EXPECT_THROW(empty.for_step(1), std::logic_error);
 }

@@ -68,12 +68,12 @@ TEST(EpController, LoweredLambdaGivesTheExponentialForceSplitOverTheHalves) {
   EXPECT_NEAR(c.last_commands()[0].stretch_mm, 10.0, 1e-9);
 }
 
-TEST(EpController, DelayInStepsIsRoundedAndAtLeastOne) {
-  for (const auto& [delay_s, steps] : std::vector<std::pair<double, int>>{
-           {0.012, 3}, {0.0139, 3}, {0.0, 1}, {0.001, 1}, {0.020, 5}}) {
+TEST(EpController, DelayInStepsIsDelayOverDtAndAtLeastOne) {
+  for (const auto& [delay_s, steps] : std::vector<std::pair<double, double>>{
+           {0.012, 3.0}, {0.010, 2.5}, {0.0, 1.0}, {0.001, 1.0}, {0.020, 5.0}}) {
     EpController c = controller("delta_lambda_mm: {SG: [0]}", delay_s);
     c.start(two_halves());
-    EXPECT_EQ(c.delay_steps(), steps) << delay_s << " s";
+    EXPECT_NEAR(c.delay_steps(), steps, 1e-12) << delay_s << " s";
   }
 }
 
@@ -86,6 +86,20 @@ TEST(EpController, UsesTheFeedbackOfStepKPlusOneMinusDelay) {
     c.command(k + 1);
     const double delayed_step = static_cast<double>(std::max<std::int64_t>(0, k + 1 - 3));
     EXPECT_NEAR(c.last_commands()[0].stretch_mm, delayed_step, 1e-9) << "step " << k + 1;
+  }
+}
+
+TEST(EpController, ADelayBetweenStepsInterpolatesTheFeedback) {
+  // 10 ms at dt 4 ms is 2.5 steps: the command for step k + 1 sees the length of step
+  // k - 1.5, linear in the step here, so the interpolation is exact: A = k - 1.5 mm.
+  EpController c = controller("delta_lambda_mm: {SG: [0]}", 0.010, false);
+  c.start(two_halves());
+  for (std::int64_t k = 0; k <= 8; ++k) {
+    c.observe(state(k, 0.060 + 0.001 * static_cast<double>(k), 0.25));
+    c.command(k + 1);
+    const double delayed_step = std::max(0.0, static_cast<double>(k) - 1.5);
+    // mu v = 0.01 s x 250 mm/s = 2.5 mm, interpolated like the length (constant here).
+    EXPECT_NEAR(c.last_commands()[0].stretch_mm, delayed_step + 2.5, 1e-9) << "step " << k + 1;
   }
 }
 
@@ -116,11 +130,16 @@ TEST(EpController, ForceLagMakesTheLevelsApproachTheLawExponentially) {
   }
   const double law = bare.command(1).levels[0];
   ASSERT_GT(law, 0.0);
-  // The tongue held still: after n steps the level is law (1 - exp(-n dt / tau)).
+  // The tongue held still: the law's level rises from 0 at step 0 to `law` at step 1 (the
+  // lag's input moves linearly over a step) and stays there, so after k steps the level is
+  // law (1 - E^(k - 1) (tau / dt)(1 - E)), E = exp(-dt / tau): the exact response to that
+  // input.
+  const double e = std::exp(-kDt / lag_s);
   for (int k = 1; k <= 20; ++k) {
     if (k > 1) lagged.observe(state(k - 1, 0.06));
     const double level = lagged.command(k).levels[0];
-    EXPECT_NEAR(level, law * -std::expm1(-k * kDt / lag_s), 1e-12) << "step " << k;
+    EXPECT_NEAR(level, law * (1.0 - std::pow(e, k - 1) * (lag_s / kDt) * (1.0 - e)), 1e-12)
+        << "step " << k;
     EXPECT_EQ(lagged.last_commands()[0].level, law);  // the law itself is unchanged
   }
 }
@@ -165,11 +184,26 @@ TEST(EpController, PlanThatDoesNotFitTheModelNamesTheFile) {
   }
 }
 
+TEST(ForceLag, IsExactForAnInputLinearInTime) {
+  // tau y' = u - y, y(0) = 0, u = r t: y = r (t - tau + tau exp(-t / tau)) (closed form). The
+  // first-order hold reproduces it at every step to round-off, also over skipped steps; the
+  // zero-order hold (u held at the step's end) would be off by about r dt / 2 (1 - e^(-t/tau)).
+  const double tau = 0.02, dt = 0.004, r = 25.0;  // s, s, 1/s
+  ForceLag lag(1, tau, dt);
+  for (const int k : {1, 2, 3, 5, 9, 10, 17}) {
+    const double t = k * dt;
+    const double exact = r * (t - tau + tau * std::exp(-t / tau));
+    EXPECT_NEAR(lag.update(k, {r * t})[0], exact, 1e-14) << "step " << k;
+  }
+}
+
 TEST(ForceLag, SkippedStepsAdvanceByTheirTimeAndAResetStartsFromZero) {
   ForceLag lag(1, 0.02, 0.004);
   const double one = lag.update(1, {1.0})[0];
-  EXPECT_NEAR(one, -std::expm1(-0.004 / 0.02), 1e-15);
-  // Three steps at once (real time with --publish-every): exp(-3 dt / tau) of the gap is left.
+  // From 0 at step 0 to 1 at step 1: a ramp over the step, 1 - (tau / dt)(1 - E).
+  EXPECT_NEAR(one, 1.0 + 0.02 / 0.004 * std::expm1(-0.004 / 0.02), 1e-15);
+  // Three steps at once (real time with --publish-every), the input held at 1:
+  // exp(-3 dt / tau) of the gap is left.
   const double four = lag.update(4, {1.0})[0];
   EXPECT_NEAR(1.0 - four, (1.0 - one) * std::exp(-3 * 0.004 / 0.02), 1e-15);
   // The server went back to step 0: the lag restarts from 0 as the server's levels do.
