@@ -40,6 +40,7 @@ void SceneRun::restart() {
   if (built_.muscles) built_.muscles->set_activations(levels_);
   integrator_ = std::make_unique<fem::NewmarkIntegrator>(*built_.system, built_.dynamic_settings);
   integrator_->initialize(initial_u_, fem::Vector::Zero(initial_u_.size()), 0.0);
+  integrator_->prepare(scene::time_step_length(scene_.analysis, 0));
   accept();
   step_ = 0;
 }

@@ -9,6 +9,8 @@
 //     The initial acceleration and the damping's K0 are taken there with every muscle off: a
 //     step of force in a_0 would make the average-acceleration scheme's velocities flip sign
 //     from step to step in the stiff modes that the fibre end forces excite.
+//     The first step's tangent is factorized there too (NewmarkIntegrator::prepare), so that
+//     the first step is as quick as the later ones.
 //  3. step(dt, levels): the muscles act from the first step on, with the levels given for it.
 // Activations enter only as the argument of step(): nothing else sets them.
 #include <cstdint>

@@ -183,6 +183,15 @@ StepReport NewmarkIntegrator::hold(double dt) {
   return report;
 }
 
+void NewmarkIntegrator::prepare(double dt) {
+  if (!initialized_) initialize(u_, v_, t_);
+  newton_.invalidate_factor();
+  last_dt_ = dt;
+  StepProblem problem(*this, dt);
+  const DofMap& dofs = system_.solid().dofs();
+  newton_.prepare(problem, dofs.gather_free(u_) + dt * dofs.gather_free(v_));
+}
+
 bool NewmarkIntegrator::advance(double dt, StepReport& report, int depth) {
   if (dt != last_dt_) newton_.invalidate_factor();  // the effective tangent depends on dt
   last_dt_ = dt;

@@ -224,6 +224,14 @@ bool NewtonSolver::refactorize(NonlinearProblem& problem, const Vector& x, Vecto
   return true;
 }
 
+bool NewtonSolver::prepare(NonlinearProblem& problem, const Vector& x) {
+  NewtonReport report;
+  Vector r(x.size());
+  if (refactorize(problem, x, r, report)) return true;
+  forget_factor();
+  return false;
+}
+
 void NewtonSolver::remember(Vector s, Vector y) {
   // The pair enters only with positive curvature y . s > 0, which keeps H positive definite.
   const double curvature = y.dot(s);
