@@ -15,11 +15,14 @@
 // dt 0.1 ms), the RMS nodal error against it [mm], over the frames whose times both runs have,
 // as scripts/compare_runs.py computes it. The rows also go to a CSV (default
 // logs/closed_loop.csv), which rtf_error_benchmark's diagram draws beside its own settings.
+// Last, the bus's own floor under the lock-step overhead: the round trip of a state-sized
+// datagram and a small answer between two processes, with no simulation at all.
 //
 // Usage: closed_loop_benchmark [--runs K] [--csv FILE]   (default 3: medians of K runs per row)
 // Uses ports 7795-7799. Build in Release; with K = 3 it takes about 30 s.
 
 #include <signal.h>
+#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -37,6 +40,7 @@
 #include <thread>
 #include <vector>
 
+#include <lcm/lcm.h>
 #include <yaml-cpp/yaml.h>
 
 #include "bus/channels.hpp"
@@ -229,6 +233,57 @@ Figures run_once(const Scenario& s, int threads, int port, const fs::path& folde
   return f;
 }
 
+// The bus's own floor under the lock-step overhead: the median round trip of a datagram the size
+// of the tongue's state (all nodes: about 24 kB) answered by one of 200 bytes, between this
+// program and a child process of it, on a bus of its own; in ms. Measured first, before this
+// program has threads (the child is forked).
+double bus_floor_ms(const std::string& url) {
+  constexpr std::size_t kStateBytes = 24000, kAnswerBytes = 200;
+  constexpr int kRounds = 500;
+  const pid_t child = ::fork();
+  if (child < 0) throw std::runtime_error("fork failed");
+  if (child == 0) {  // the echo: answers every ping until killed
+    lcm_t* echo = lcm_create(url.c_str());
+    if (!echo) ::_exit(1);
+    lcm_subscribe(
+        echo, "FLOOR_PING",
+        [](const lcm_recv_buf_t*, const char*, void* e) {
+          static const std::vector<char> answer(kAnswerBytes, 0);
+          lcm_publish(static_cast<lcm_t*>(e), "FLOOR_PONG", answer.data(),
+                      static_cast<unsigned>(answer.size()));
+        },
+        echo);
+    for (;;) lcm_handle(echo);
+  }
+  struct Ping {
+    lcm_t* lcm = nullptr;
+    bool answered = false;
+    pid_t echo;
+    ~Ping() {
+      if (lcm) lcm_destroy(lcm);
+      ::kill(echo, SIGKILL);
+      ::waitpid(echo, nullptr, 0);
+    }
+  } ping{lcm_create(url.c_str()), false, child};
+  if (!ping.lcm) throw std::runtime_error("cannot open the bus " + url);
+  lcm_subscribe(
+      ping.lcm, "FLOOR_PONG",
+      [](const lcm_recv_buf_t*, const char*, void* p) { static_cast<Ping*>(p)->answered = true; },
+      &ping);
+  const std::vector<char> message(kStateBytes, 1);
+  std::vector<double> times;
+  for (int k = 0; k < kRounds + 20; ++k) {  // the first 20 while the echo starts: not counted
+    const Clock::time_point start = Clock::now();
+    ping.answered = false;
+    lcm_publish(ping.lcm, "FLOOR_PING", message.data(), static_cast<unsigned>(message.size()));
+    while (!ping.answered && seconds_since(start) < 1.0) lcm_handle_timeout(ping.lcm, 100);
+    if (ping.answered && k >= 20) times.push_back(1e3 * seconds_since(start));
+  }
+  if (times.size() < kRounds / 2) throw std::runtime_error("the bus lost most of its pings");
+  std::sort(times.begin(), times.end());
+  return times[times.size() / 2];
+}
+
 // NaN when any value is (a figure the scenario does not have).
 double median(std::vector<double> v) {
   if (std::any_of(v.begin(), v.end(), [](double x) { return std::isnan(x); }))
@@ -321,6 +376,7 @@ int main(int argc, char** argv) {
   const fs::path root =
       fs::temp_directory_path() / ("closed_loop_benchmark-" + std::to_string(::getpid()));
   try {
+    const double floor_ms = bus_floor_ms(tongue::bus::default_lcm_url_on_port(kFirstPort));
     if (options.csv.has_parent_path()) fs::create_directories(options.csv.parent_path());
     std::ofstream csv(options.csv);
     if (!csv) throw std::runtime_error("cannot write " + options.csv.string());
@@ -344,6 +400,10 @@ int main(int argc, char** argv) {
       }
     }
     std::printf("%sCSV: %s\n", kLegend, options.csv.c_str());
+    std::printf(
+        "bus floor: a 24 kB datagram answered by 200 bytes, between two processes on this bus: "
+        "median round trip %.3f ms\n",
+        floor_ms);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "closed_loop_benchmark: %s (runs kept in %s)\n", e.what(), root.c_str());
     return 1;

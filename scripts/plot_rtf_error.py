@@ -7,8 +7,9 @@ Usage: /usr/bin/python3 scripts/plot_rtf_error.py logs/rtf_error.csv logs/rtf_er
 Log-log axes; one marker per setting: colour by time step, shape by solver policy and material,
 hollow for 2 threads. The dashed lines are the targets: real time (RTF = 1) and 0.1 mm RMS.
 With --closed-loop, closed_loop_benchmark's rows that have an error against their reference are
-drawn too, as stars labelled with the scenario (dt 4 ms, sim_server and a controller process in
-lock-step; their RTF is the closed loop's, their error against their own reference run).
+drawn too, as stars labelled with the scenario (at the scene's dt, sim_server and a controller
+process in lock-step; their RTF is the closed loop's, their error against their own reference
+run).
 """
 import argparse
 import csv
@@ -40,7 +41,7 @@ def draw_closed_loop(ax, path):
             continue
         rtf = float(r["rtf"])
         ax.scatter(max(rms, 1e-6), rtf, marker="*", s=140, color="crimson",
-                   label=None if drawn else "closed loop (lock-step, dt 4 ms)")
+                   label=None if drawn else "closed loop (lock-step, the scene's dt)")
         ax.annotate(r["scenario"], (rms, rtf), textcoords="offset points", xytext=(-7, 6),
                     ha="right", fontsize=7, color="crimson")
         drawn = True
