@@ -22,21 +22,31 @@ bool relation(const std::string& what, const std::string& name, std::int32_t val
 }
 
 // The layout of lcmt_tongue_state after the fingerprint (lcmtypes/lcmt_tongue_state.lcm).
-bool state_layout(WireReader& in, std::int32_t& nodes, std::int32_t& positions,
-                  std::string& reason) {
+struct StateCounts {
+  std::int32_t nodes = 0, positions = 0, contacts = 0, contact_forces = 0, obstacle_forces = 0;
+};
+bool state_layout(WireReader& in, StateCounts& c, std::string& reason) {
   std::int32_t muscles = 0;
   return in.fixed("utime, step, time", kInt64 + kInt64 + kDouble, reason) &&
-         in.count("num_nodes", kInt32, nodes, reason) &&
-         in.fixed("node_indices", std::int64_t{kInt32} * nodes, reason) &&
-         in.count("num_positions", kDouble, positions, reason) &&
-         in.fixed("positions", std::int64_t{kDouble} * positions, reason) &&
+         in.count("num_nodes", kInt32, c.nodes, reason) &&
+         in.fixed("node_indices", std::int64_t{kInt32} * c.nodes, reason) &&
+         in.count("num_positions", kDouble, c.positions, reason) &&
+         in.fixed("positions", std::int64_t{kDouble} * c.positions, reason) &&
          in.count("num_muscles", 3 * kDouble, muscles, reason) &&
          in.fixed("muscle_lengths, muscle_velocities, activations",
                   std::int64_t{3 * kDouble} * muscles, reason) &&
          in.fixed("newton_iterations, residual_norm, step_wall_time, step_cuts, converged",
                   kInt32 + kDouble + kDouble + kInt32 + kBoolean, reason) &&
          in.string("status", reason) &&
-         in.fixed("rejected_messages, overruns", kInt64 + kInt64, reason) && in.at_end(reason);
+         in.fixed("rejected_messages, overruns", kInt64 + kInt64, reason) &&
+         in.count("num_contacts", 2 * kInt32, c.contacts, reason) &&
+         in.fixed("contact_nodes, contact_obstacles", std::int64_t{2 * kInt32} * c.contacts,
+                  reason) &&
+         in.count("num_contact_forces", kDouble, c.contact_forces, reason) &&
+         in.fixed("contact_forces", std::int64_t{kDouble} * c.contact_forces, reason) &&
+         in.count("num_obstacle_forces", kDouble, c.obstacle_forces, reason) &&
+         in.fixed("obstacle_forces", std::int64_t{kDouble} * c.obstacle_forces, reason) &&
+         in.fixed("max_penetration", kDouble, reason) && in.at_end(reason);
 }
 
 // The layout of lcmt_tongue_model after the fingerprint (lcmtypes/lcmt_tongue_model.lcm).
@@ -44,7 +54,7 @@ struct ModelCounts {
   std::int32_t nodes = 0, rest = 0, elements = 0, element_nodes = 0;
 };
 bool model_layout(WireReader& in, ModelCounts& c, std::string& reason) {
-  std::int32_t muscles = 0, landmarks = 0;
+  std::int32_t muscles = 0, landmarks = 0, obstacles = 0;
   return in.fixed("utime", kInt64, reason) && in.count("num_nodes", 0, c.nodes, reason) &&
          in.count("num_rest_positions", kDouble, c.rest, reason) &&
          in.fixed("rest_positions", std::int64_t{kDouble} * c.rest, reason) &&
@@ -57,7 +67,9 @@ bool model_layout(WireReader& in, ModelCounts& c, std::string& reason) {
          in.count("num_landmarks", kMinString + kInt32, landmarks, reason) &&
          in.strings("landmark_names", landmarks, reason) &&
          in.fixed("landmark_nodes", std::int64_t{kInt32} * landmarks, reason) &&
-         in.fixed("dt", kDouble, reason) && in.string("scene", reason) && in.at_end(reason);
+         in.fixed("dt", kDouble, reason) && in.string("scene", reason) &&
+         in.count("num_obstacles", kMinString, obstacles, reason) &&
+         in.strings("obstacle_names", obstacles, reason) && in.at_end(reason);
 }
 
 }  // namespace
@@ -65,18 +77,26 @@ bool model_layout(WireReader& in, ModelCounts& c, std::string& reason) {
 bool decode_state(const void* data, int size, tongue_lcm::lcmt_tongue_state& out,
                   std::string& reason) {
   const std::string what = "lcmt_tongue_state: ";
-  // The shortest state: no nodes, no muscles, an empty status.
-  constexpr int kShortest =
-      kInt64 * 4 + kInt32 * 3 + kInt32 + kDouble * 2 + kInt32 + kBoolean + kMinString + kInt64 * 2;
+  // The shortest state: no nodes, no muscles, an empty status, no contact.
+  constexpr int kShortest = kInt64 * 4 + kInt32 * 3 + kInt32 + kDouble * 2 + kInt32 + kBoolean +
+                            kMinString + kInt64 * 2 + kInt32 * 3 + kDouble;
   WireReader in(data, size);
   if (!start_message(in, tongue_lcm::lcmt_tongue_state::getHash(), kShortest, what, reason))
     return false;
-  std::int32_t nodes = 0, positions = 0;
-  if (!state_layout(in, nodes, positions, reason)) {
+  StateCounts c;
+  if (!state_layout(in, c, reason)) {
     reason = what + reason;
     return false;
   }
-  if (!relation(what, "num_positions", positions, "num_nodes", nodes, 3, reason)) return false;
+  if (!relation(what, "num_positions", c.positions, "num_nodes", c.nodes, 3, reason) ||
+      !relation(what, "num_contact_forces", c.contact_forces, "num_contacts", c.contacts, 3,
+                reason))
+    return false;
+  if (c.obstacle_forces % 3 != 0) {
+    reason = what + "num_obstacle_forces = " + std::to_string(c.obstacle_forces) +
+             " is not a multiple of 3";
+    return false;
+  }
   return checked_decode(data, size, out, what, reason);
 }
 
@@ -84,7 +104,7 @@ bool decode_model(const void* data, int size, tongue_lcm::lcmt_tongue_model& out
                   std::string& reason) {
   const std::string what = "lcmt_tongue_model: ";
   // The shortest model: nothing in it, an empty scene.
-  constexpr int kShortest = kInt64 * 2 + kInt32 * 6 + kDouble + kMinString;
+  constexpr int kShortest = kInt64 * 2 + kInt32 * 7 + kDouble + kMinString;
   WireReader in(data, size);
   if (!start_message(in, tongue_lcm::lcmt_tongue_model::getHash(), kShortest, what, reason))
     return false;

@@ -16,11 +16,15 @@ std::size_t activation_limit(const std::vector<std::string>& muscle_names) {
 
 std::size_t state_limit(const tongue_lcm::lcmt_tongue_model& model) {
   // The fixed fields (lcmt_tongue_state.lcm) with an empty status, then per node an index and 3
-  // positions, per muscle 3 doubles.
-  const std::size_t fixed = 8 * 4 + 4 * 3 + 4 + 8 * 2 + 4 + 1 + 5 + 8 * 2;
+  // positions and, in contact, a node, an obstacle and 3 forces; per muscle 3 doubles; per
+  // obstacle 3 forces.
+  const std::size_t fixed = 8 * 4 + 4 * 3 + 4 + 8 * 2 + 4 + 1 + 5 + 8 * 2 + 4 * 3 + 8;
   const auto nodes = static_cast<std::size_t>(std::max(model.num_nodes, 0));
   const auto muscles = static_cast<std::size_t>(std::max(model.num_muscles, 0));
-  return kLimitFactor * (fixed + nodes * (4 + 3 * 8) + muscles * 3 * 8) + kStatusAllowance;
+  const auto obstacles = static_cast<std::size_t>(std::max(model.num_obstacles, 0));
+  return kLimitFactor * (fixed + nodes * (4 + 3 * 8 + 4 + 4 + 3 * 8) + muscles * 3 * 8 +
+                         obstacles * 3 * 8) +
+         kStatusAllowance;
 }
 
 }  // namespace tongue::bus

@@ -36,7 +36,7 @@ inline constexpr std::size_t kStatusAllowance = 65536;
 std::size_t activation_limit(const std::vector<std::string>& muscle_names);
 
 // The limit of states of model: kLimitFactor times a state carrying all its nodes and muscles,
-// plus kStatusAllowance.
+// every node in contact, plus kStatusAllowance.
 std::size_t state_limit(const tongue_lcm::lcmt_tongue_model& model);
 
 }  // namespace tongue::bus

@@ -101,6 +101,7 @@ class ServerLoop {
   void publish_model();
   void publish_state(const std::string& status, bool converged = true);
   void log_frame();
+  void note_contact();  // contact_ of the last accepted state
   std::string status_text(ExitStatus status) const;  // the run file's status attribute
   std::string silence_text() const;
   std::string lockstep_wait_text() const;  // what lock-step waits for: the step, m of N arrived
@@ -120,6 +121,9 @@ class ServerLoop {
   // The last step's solver figures and muscle frame (at step 0: none, and the initial frame),
   // published again by pause, describe and reset without computing them twice.
   scene_run::StepResult last_;
+  // The contact of the last accepted state (empty without obstacles), found once for its state
+  // message and its run-file frame.
+  fem::ContactReport contact_;
   // Kept from step to step, so that a step's state message and run-file frame reuse storage.
   tongue_lcm::lcmt_tongue_state state_;
   fem::Vector positions_;  // m, the frame's node positions

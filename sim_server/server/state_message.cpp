@@ -44,12 +44,16 @@ tongue_lcm::lcmt_tongue_model model_message(const scene_run::SceneRun& run, std:
   msg.num_landmarks = static_cast<std::int32_t>(msg.landmark_names.size());
   msg.dt = run.scene().analysis.dt;
   msg.scene = run.scene().text;
+  if (built.contact)
+    for (const auto& obstacle : built.contact->obstacles())
+      msg.obstacle_names.push_back(obstacle->name());
+  msg.num_obstacles = static_cast<std::int32_t>(msg.obstacle_names.size());
   return msg;
 }
 
 void fill_state_message(tongue_lcm::lcmt_tongue_state& msg, const scene_run::SceneRun& run,
                         const std::vector<int>& nodes, const scene_run::StepResult& last,
-                        const StateNotes& notes) {
+                        const fem::ContactReport& contact, const StateNotes& notes) {
   msg.utime = notes.utime;
   msg.step = run.step_count();
   msg.time = run.time();
@@ -74,6 +78,22 @@ void fill_state_message(tongue_lcm::lcmt_tongue_state& msg, const scene_run::Sce
   msg.status = notes.status;
   msg.rejected_messages = notes.rejected_messages;
   msg.overruns = notes.overruns;
+  msg.num_contacts = static_cast<std::int32_t>(contact.contacts.size());
+  msg.contact_nodes.resize(contact.contacts.size());
+  msg.contact_obstacles.resize(contact.contacts.size());
+  msg.contact_forces.resize(3 * contact.contacts.size());
+  for (std::size_t k = 0; k < contact.contacts.size(); ++k) {
+    const fem::NodeContact& c = contact.contacts[k];
+    msg.contact_nodes[k] = c.node;
+    msg.contact_obstacles[k] = c.obstacle;
+    for (int i = 0; i < 3; ++i) msg.contact_forces[3 * k + i] = c.force[i];
+  }
+  msg.num_contact_forces = static_cast<std::int32_t>(msg.contact_forces.size());
+  msg.obstacle_forces.resize(3 * contact.obstacle_force.size());
+  for (std::size_t o = 0; o < contact.obstacle_force.size(); ++o)
+    for (int i = 0; i < 3; ++i) msg.obstacle_forces[3 * o + i] = contact.obstacle_force[o][i];
+  msg.num_obstacle_forces = static_cast<std::int32_t>(msg.obstacle_forces.size());
+  msg.max_penetration = contact.max_penetration;
 }
 
 }  // namespace tongue::server

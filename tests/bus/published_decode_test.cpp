@@ -35,8 +35,19 @@ lcmt_tongue_state a_state() {
   s.activations = {0.5};
   s.converged = true;
   s.status = "ok";
+  s.num_contacts = 1;
+  s.contact_nodes = {5};
+  s.contact_obstacles = {0};
+  s.num_contact_forces = 3;
+  s.contact_forces = {0.0, -0.2, 0.0};
+  s.num_obstacle_forces = 3;
+  s.obstacle_forces = {0.0, 0.2, 0.0};
+  s.max_penetration = 1e-5;
   return s;
 }
+
+// Bytes after a_state()'s status: rejected_messages, overruns, then the contact fields.
+constexpr std::size_t kStateTail = 8 + 8 + (4 + 4 + 4) + (4 + 3 * 8) + (4 + 3 * 8) + 8;
 
 lcmt_tongue_model a_model() {
   lcmt_tongue_model m{};
@@ -54,6 +65,8 @@ lcmt_tongue_model a_model() {
   m.landmark_nodes = {0};
   m.dt = 0.002;
   m.scene = "mesh: {}";
+  m.num_obstacles = 1;
+  m.obstacle_names = {"hard_palate"};
   return m;
 }
 
@@ -113,7 +126,7 @@ TEST(DecodeModel, EveryTruncationFailsWithAReason) {
 // decoder throws on it), and the other hostile lengths.
 TEST(DecodeState, BadStatusLengthsFail) {
   const auto whole = encoded(a_state());
-  const std::size_t status_offset = whole.size() - 8 - 8 - (4 + 3);  // "ok" + NUL
+  const std::size_t status_offset = whole.size() - kStateTail - (4 + 3);  // "ok" + NUL
   for (const std::int32_t length : {0, -1, std::numeric_limits<std::int32_t>::min(), 100,
                                     std::numeric_limits<std::int32_t>::max()}) {
     auto bytes = whole;
@@ -122,6 +135,29 @@ TEST(DecodeState, BadStatusLengthsFail) {
     EXPECT_FALSE(state_decodes(bytes, reason)) << length;
     EXPECT_NE(reason.find("status"), std::string::npos) << reason;
   }
+}
+
+TEST(DecodeState, ContactCountsThatDoNotMatchFail) {
+  const auto whole = encoded(a_state());
+  // num_contact_forces: 4 + 3 * 8 + 4 + 3 * 8 + 8 bytes before the end.
+  const std::size_t contact_forces = whole.size() - (4 + 3 * 8) - (4 + 3 * 8) - 8;
+  auto bytes = whole;
+  put_int32(bytes, contact_forces, 0);  // 3 * num_contacts expected; the rest no longer fits
+  std::string reason;
+  EXPECT_FALSE(state_decodes(bytes, reason));
+  EXPECT_FALSE(reason.empty());
+  lcmt_tongue_state two_forces = a_state();
+  two_forces.num_contact_forces = 2;
+  two_forces.contact_forces = {0.0, -0.2};
+  EXPECT_FALSE(state_decodes(encoded(two_forces), reason));
+  EXPECT_NE(reason.find("num_contact_forces = 2 is not 3 * num_contacts"), std::string::npos)
+      << reason;
+  lcmt_tongue_state four = a_state();
+  four.num_obstacle_forces = 4;
+  four.obstacle_forces = {0.0, 0.2, 0.0, 1.0};
+  EXPECT_FALSE(state_decodes(encoded(four), reason));
+  EXPECT_NE(reason.find("num_obstacle_forces = 4 is not a multiple of 3"), std::string::npos)
+      << reason;
 }
 
 // Every int32 of the message overwritten with an absurd value: a count or length among them

@@ -491,6 +491,53 @@ TEST_F(ServerLoopTest, StatesCarryTheSelectedNodes) {
   EXPECT_EQ(s.positions.size(), 3 * s.node_indices.size());
 }
 
+// The box falling onto a floor 0.5 mm below it (a square of 100 mm, facing up): once it lands,
+// every state names the obstacle, the nodes it pushes and the forces, and they agree with the
+// run file's frame of the same step: the contact forces sum to the force on the floor (its
+// opposite), and the nodes in contact are those with a force in /contact/node_force.
+TEST_F(ServerLoopTest, StatesCarryTheContactWithTheObstacles) {
+  constexpr std::int64_t kSteps = 15;  // 30 ms: a free fall of 0.5 mm takes about 10 ms
+  const std::string floor = write("floor.obj",
+                                  "v -50 -50 0\nv 50 -50 0\nv 50 50 0\nv -50 50 0\n"
+                                  "f 1 2 3\nf 1 3 4\n");
+  const std::string scene = std::string(tongue::testing::kBoxScene) +
+                            "obstacles:\n  - {name: floor, file: " + floor +
+                            ", length_scale: 0.001, rotate: [-90, 0, 0], translate: [0, -0.0005, "
+                            "0]}\n";
+  for (std::int64_t k = 1; k <= kSteps; ++k) bus_.send_activation(k, {"flexor"}, {0.0});
+  bus_.send_command("shutdown");
+  ServerOptions options = with_run_file();
+  ASSERT_EQ(status(run(options, scene.c_str())), status(common::kExitOk));
+  ASSERT_FALSE(bus_.models.empty());
+  EXPECT_EQ(bus_.models.back().obstacle_names, (std::vector<std::string>{"floor"}));
+  ASSERT_EQ(bus_.states.size(), static_cast<std::size_t>(kSteps + 1));
+  EXPECT_EQ(bus_.states.front().num_contacts, 0);  // at rest, 0.5 mm above the floor
+  const lcmt_tongue_state& last = bus_.states.back();
+  ASSERT_GT(last.num_contacts, 0) << "the box did not land";
+  ASSERT_EQ(last.contact_forces.size(), 3u * last.num_contacts);
+  ASSERT_EQ(last.num_obstacle_forces, 3);
+  double sum_y = 0.0;
+  for (int k = 0; k < last.num_contacts; ++k) {
+    EXPECT_EQ(last.contact_obstacles[k], 0);
+    EXPECT_GT(last.contact_forces[3 * k + 1], 0.0);  // the floor pushes up
+    sum_y += last.contact_forces[3 * k + 1];
+  }
+  EXPECT_NEAR(last.obstacle_forces[1], -sum_y, 1e-12 * std::abs(sum_y));
+  EXPECT_GE(last.max_penetration, 0.0);
+  EXPECT_LT(last.max_penetration, 5e-4);  // below the floor's start: not through it
+
+  const tongue::testing::RunFile f(dir_ / "run.h5");
+  ASSERT_TRUE(f.ok());
+  const std::vector<double> node_force = f.doubles("/contact/node_force");
+  const std::size_t per_frame = node_force.size() / (kSteps + 1);
+  for (int k = 0; k < last.num_contacts; ++k) {
+    const std::size_t at = kSteps * per_frame + 3 * static_cast<std::size_t>(last.contact_nodes[k]);
+    for (int c = 0; c < 3; ++c)
+      EXPECT_EQ(node_force.at(at + c), last.contact_forces[3 * k + c]) << "contact " << k;
+  }
+  EXPECT_EQ(f.doubles("/contact/max_penetration").back(), last.max_penetration);
+}
+
 TEST_F(ServerLoopTest, TheRunFileCarriesThePerStepTiming) {
   constexpr std::int64_t kSteps = 6;
   for (std::int64_t k = 1; k <= kSteps; ++k) bus_.send_activation(k, {"flexor"}, {0.3});
