@@ -320,12 +320,15 @@ void ServerLoop::clear_to_step_zero() {
   last_ = scene_run::StepResult{};
   last_.report.converged = true;
   last_.muscles = run_.muscle_frame();
-  note_contact();
+  contact_.reset();
 }
 
-void ServerLoop::note_contact() {
-  const auto& contact = run_.built().contact;
-  contact_ = contact ? contact->report(run_.displacement()) : fem::ContactReport{};
+const fem::ContactReport& ServerLoop::contact() {
+  if (!contact_) {
+    const auto& obstacles = run_.built().contact;
+    contact_ = obstacles ? obstacles->report(run_.displacement()) : fem::ContactReport{};
+  }
+  return *contact_;
 }
 
 void ServerLoop::execute(bus::Command command) {
@@ -385,7 +388,7 @@ void ServerLoop::take_step(const fem::Vector& levels) {
     return;
   }
   if (options_.mode == Mode::realtime) count_overrun(steady_seconds() - finish_by);
-  note_contact();
+  contact_.reset();
   // The state first: in lock-step the controller's turn starts with it, and the rest of the
   // step's work (the run file's frame, the bookkeeping) overlaps that turn.
   if (should_publish()) publish_state("ok");
@@ -424,7 +427,7 @@ void ServerLoop::publish_state(const std::string& status, bool converged) {
   notes.rejected_messages = input_.rejected();
   notes.overruns = overruns_;
   notes.utime = wall_utime();
-  fill_state_message(state_, run_, node_indices_, last_, contact_, notes);
+  fill_state_message(state_, run_, node_indices_, last_, contact(), notes);
   bus_.publish_state(state_);
 }
 
@@ -433,7 +436,7 @@ void ServerLoop::log_frame() {
   const fem::StepReport& r = last_.report;
   positions_.noalias() = run_.built().solid->rest_positions() + run_.displacement();
   log_->append(run_.time(), positions_, {r.iterations, r.final_residual, r.wall_seconds, r.cuts},
-               last_.muscles, scene_run::scene_contact_frame(run_.built(), contact_));
+               last_.muscles, scene_run::scene_contact_frame(run_.built(), contact()));
 }
 
 }  // namespace tongue::server

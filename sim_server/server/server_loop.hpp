@@ -101,7 +101,8 @@ class ServerLoop {
   void publish_model();
   void publish_state(const std::string& status, bool converged = true);
   void log_frame();
-  void note_contact();  // contact_ of the last accepted state
+  // The contact of the last accepted state, found at its first use.
+  const fem::ContactReport& contact();
   std::string status_text(ExitStatus status) const;  // the run file's status attribute
   std::string silence_text() const;
   std::string lockstep_wait_text() const;  // what lock-step waits for: the step, m of N arrived
@@ -122,8 +123,8 @@ class ServerLoop {
   // published again by pause, describe and reset without computing them twice.
   scene_run::StepResult last_;
   // The contact of the last accepted state (empty without obstacles), found once for its state
-  // message and its run-file frame.
-  fem::ContactReport contact_;
+  // messages and its run-file frame, and only when one of them is made; none: not yet found.
+  std::optional<fem::ContactReport> contact_;
   // Kept from step to step, so that a step's state message and run-file frame reuse storage.
   tongue_lcm::lcmt_tongue_state state_;
   fem::Vector positions_;  // m, the frame's node positions
