@@ -54,33 +54,83 @@ std::vector<Vec3> outward_normals(const TongueGrid& grid) {
   return normal;
 }
 
-// A sheet over a rows x cols patch of boundary nodes, each moved out along its normal by the gap
-// of its row, the quads split into triangles that face the tongue.
-fem::TriangleSurface offset_sheet(const TongueGrid& grid, const std::vector<Vec3>& normal, int rows,
-                                  int cols, const std::function<int(int, int)>& node,
-                                  const std::function<double(int)>& gap) {
-  fem::TriangleSurface s;
+// A rows x cols grid of points on a sheet, each with the tongue's outward normal where it was
+// taken from (the sheet faces the other way, toward the tongue).
+struct SheetGrid {
+  struct Point {
+    Vec3 at, outward;
+  };
+  int rows = 0, cols = 0;
+  std::vector<Point> points;  // row-major
+  int id(int r, int c) const { return r * cols + c; }
+  const Point& operator()(int r, int c) const { return points[id(r, c)]; }
+};
+
+// The grid over a rows x cols patch of boundary nodes, each moved out along its normal by the gap
+// of its row.
+SheetGrid offset_grid(const TongueGrid& grid, const std::vector<Vec3>& normal, int rows, int cols,
+                      const std::function<int(int, int)>& node,
+                      const std::function<double(int)>& gap) {
+  SheetGrid s{rows, cols, {}};
   for (int r = 0; r < rows; ++r)
     for (int c = 0; c < cols; ++c) {
       const int n = node(r, c);
-      s.vertices.push_back(grid.mesh.nodes[n] + gap(r) * normal[n]);
-    }
-  const auto id = [&](int r, int c) { return r * cols + c; };
-  const auto outward = [&](int r, int c) { return normal[node(r, c)]; };
-  for (int r = 0; r + 1 < rows; ++r)
-    for (int c = 0; c + 1 < cols; ++c) {
-      std::array<int, 3> t1{id(r, c), id(r + 1, c), id(r + 1, c + 1)};
-      std::array<int, 3> t2{id(r, c), id(r + 1, c + 1), id(r, c + 1)};
-      const Vec3 n1 =
-          (s.vertices[t1[1]] - s.vertices[t1[0]]).cross(s.vertices[t1[2]] - s.vertices[t1[0]]);
-      if (n1.dot(outward(r, c) + outward(r + 1, c + 1)) > 0.0) {  // faces away: turn both
-        std::swap(t1[1], t1[2]);
-        std::swap(t2[1], t2[2]);
-      }
-      s.triangles.push_back(t1);
-      s.triangles.push_back(t2);
+      s.points.push_back({grid.mesh.nodes[n] + gap(r) * normal[n], normal[n]});
     }
   return s;
+}
+
+// s with a skirt: a column added before the first (first) or after the last (last), each point
+// carried on by length along the line its row's last two points make. Where two sheets meet at
+// their rims (the palate's lateral edge is the teeth's upper one), their skirts cross, so that a
+// node cannot pass between them: beyond a rim an open sheet has no inside.
+SheetGrid with_skirt(const SheetGrid& s, bool first, bool last, double length) {
+  SheetGrid out{s.rows, s.cols + (first ? 1 : 0) + (last ? 1 : 0), {}};
+  const auto carried = [&](int r, int edge, int inner) {
+    SheetGrid::Point p = s(r, edge);
+    p.at += length * (p.at - s(r, inner).at).normalized();
+    return p;
+  };
+  for (int r = 0; r < s.rows; ++r) {
+    if (first) out.points.push_back(carried(r, 0, 1));
+    for (int c = 0; c < s.cols; ++c) out.points.push_back(s(r, c));
+    if (last) out.points.push_back(carried(r, s.cols - 1, s.cols - 2));
+  }
+  return out;
+}
+
+// s with rows and columns swapped.
+SheetGrid transposed(const SheetGrid& s) {
+  SheetGrid out{s.cols, s.rows, {}};
+  for (int c = 0; c < s.cols; ++c)
+    for (int r = 0; r < s.rows; ++r) out.points.push_back(s(r, c));
+  return out;
+}
+
+// The grid's quads split into triangles, all wound alike, turned so that most of them face the
+// tongue. (One turn for the whole sheet: a skirt's quad, bent away from the tongue's normals it
+// carries, could otherwise be turned alone and disagree with its neighbours.)
+fem::TriangleSurface triangulate(const SheetGrid& s) {
+  fem::TriangleSurface out;
+  for (const SheetGrid::Point& p : s.points) out.vertices.push_back(p.at);
+  int away = 0;  // triangles facing away from the tongue, less those facing it
+  for (int r = 0; r + 1 < s.rows; ++r)
+    for (int c = 0; c + 1 < s.cols; ++c) {
+      out.triangles.push_back({s.id(r, c), s.id(r + 1, c), s.id(r + 1, c + 1)});
+      out.triangles.push_back({s.id(r, c), s.id(r + 1, c + 1), s.id(r, c + 1)});
+      const Vec3 n = (s(r + 1, c + 1).at - s(r, c).at).cross(s(r, c + 1).at - s(r, c).at);
+      away += n.dot(s(r, c).outward + s(r + 1, c + 1).outward) > 0.0 ? 1 : -1;
+    }
+  if (away > 0)
+    for (auto& t : out.triangles) std::swap(t[1], t[2]);
+  return out;
+}
+
+// A sheet over a rows x cols patch of boundary nodes (offset_grid), triangulated.
+fem::TriangleSurface offset_sheet(const TongueGrid& grid, const std::vector<Vec3>& normal, int rows,
+                                  int cols, const std::function<int(int, int)>& node,
+                                  const std::function<double(int)>& gap) {
+  return triangulate(offset_grid(grid, normal, rows, cols, node, gap));
 }
 
 fem::TriangleSurface join(fem::TriangleSurface a, const fem::TriangleSurface& b) {
@@ -94,6 +144,9 @@ fem::TriangleSurface join(fem::TriangleSurface a, const fem::TriangleSurface& b)
 
 std::vector<std::shared_ptr<const fem::Obstacle>> make_vocal_tract(const VocalTractGaps& gaps) {
   constexpr int kRefinement = 4;
+  // How far the palate and the teeth go on past the edge where they meet [m]: beyond the other
+  // sheet (3 mm from the tongue there), so that the two cross.
+  constexpr double kSkirt = 0.003;
   const TongueGrid grid = make_tongue_grid(default_tongue_shape(), kRefinement);
   const std::vector<Vec3> normal = outward_normals(grid);
   const GridSize& g = grid.size;
@@ -110,23 +163,31 @@ std::vector<std::shared_ptr<const fem::Obstacle>> make_vocal_tract(const VocalTr
   const int front_rows = R - at(0.55, R);
   const int palate_end = at(0.40, g.angular);
   const double ridge_end = front_rows + 0.08 * g.angular, blend = 0.08 * g.angular;
-  auto palate = offset_sheet(
-      grid, normal, front_rows + palate_end + 1, K + 1,
-      [&](int r, int c) {
-        return r < front_rows ? grid.node(0, at(0.55, R) + r, c) : grid.node(r - front_rows, R, c);
-      },
-      [&](int r) {
-        const double t = std::clamp((r - ridge_end) / blend, 0.0, 1.0);
-        return gaps.alveolar_ridge + t * (gaps.hard_palate - gaps.alveolar_ridge);
-      });
+  // Skirted on both lateral edges, where it meets the teeth.
+  auto palate = triangulate(
+      with_skirt(offset_grid(
+                     grid, normal, front_rows + palate_end + 1, K + 1,
+                     [&](int r, int c) {
+                       return r < front_rows ? grid.node(0, at(0.55, R) + r, c)
+                                             : grid.node(r - front_rows, R, c);
+                     },
+                     [&](int r) {
+                       const double t = std::clamp((r - ridge_end) / blend, 0.0, 1.0);
+                       return gaps.alveolar_ridge + t * (gaps.hard_palate - gaps.alveolar_ridge);
+                     }),
+                 true, true, kSkirt));
 
-  // Upper teeth: both sides of the front 40 %, from half the radius to the dorsum.
+  // Upper teeth: both sides of the front 40 %, from half the radius to the dorsum, skirted on
+  // the upper edge and the front one, where they meet the palate (over the dorsum and down the
+  // front face).
   const int teeth_rows = palate_end + 1, teeth_cols = R - at(0.5, R) + 1;
   const auto side = [&](int k) {
-    return offset_sheet(
+    const SheetGrid teeth = offset_grid(
         grid, normal, teeth_rows, teeth_cols,
         [&, k](int r, int c) { return grid.node(r, at(0.5, R) + c, k); },
         [&](int) { return gaps.upper_teeth; });
+    return triangulate(
+        with_skirt(transposed(with_skirt(teeth, false, true, kSkirt)), true, false, kSkirt));
   };
   auto teeth = join(side(0), side(K));
 

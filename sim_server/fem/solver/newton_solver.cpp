@@ -232,6 +232,14 @@ bool NewtonSolver::prepare(NonlinearProblem& problem, const Vector& x) {
   return false;
 }
 
+bool NewtonSolver::same_engaged_terms(NonlinearProblem& problem, const Vector& at) {
+  // terms_ holds the terms engaged at the iterate the step started from (split_terms).
+  problem.rank_one_terms(at, scratch_terms_);
+  std::erase_if(scratch_terms_, [](const RankOneTerm& t) { return !t.engaged(); });
+  return std::equal(terms_.begin(), terms_.end(), scratch_terms_.begin(), scratch_terms_.end(),
+                    [](const RankOneTerm& a, const RankOneTerm& b) { return a.index == b.index; });
+}
+
 void NewtonSolver::remember(Vector s, Vector y) {
   // The pair enters only with positive curvature y . s > 0, which keeps H positive definite.
   const double curvature = y.dot(s);
@@ -317,7 +325,9 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, Vector& x, const Vec
     Vector x_trial, r_trial;
     const double eta = line_search(evaluate, x, dx, r, x_trial, r_trial);
     if (eta == 0.0) return fail("every step along the Newton direction inverts an element");
-    if (s.quasi_newton_updates > 0 && s.max_tangent_reuse > 0) remember(x_trial - x, r_trial - r);
+    if (s.quasi_newton_updates > 0 && s.max_tangent_reuse > 0 &&
+        same_engaged_terms(problem, x_trial))
+      remember(x_trial - x, r_trial - r);
     x = std::move(x_trial);
     r = std::move(r_trial);
     const double previous_norm = r_norm;
