@@ -9,6 +9,8 @@
 //       fifths, from its lateral margins down to half its height;
 //   "velum": the soft palate (rigid here), over the middle third of the dorsum, 30 mm wide;
 //   "pharyngeal_wall": behind the root, the dorsum's back third.
+// The palate and the teeth meet along the tongue's lateral margins; each goes on 3 mm past that
+// edge, so that the two cross and no node slips out between them.
 // Its coordinates are the tongue's (origin at the genioglossus insertion, x anterior, y up, z to
 // the left) [m]. The gaps (vocal_tract_gaps) leave the tongue free at rest under gravity and put
 // each surface within reach of the paper's muscles: docs/contact.md.

@@ -161,8 +161,8 @@ TEST_F(EpClosedLoop, LoweringLambdaOfSGRaisesTheVelarDorsum) {
 
 // /ku/ inside the vocal tract (controllers/plans/ku_vocal_tract.yaml on
 // scenes/tongue_ep_vocal_tract.yaml, dt 4 ms): the /k/ commands close the back of the dorsum on
-// the velum, and /u/ releases it. Measured: on the velum from 92 to 232 ms, up to 1.2 N, at most
-// 0.043 mm deep, nothing else touched. Checked with margins: a velum force over 0.1 N while /k/
+// the velum, and /u/ releases it. Measured: on the velum from 92 to 240 ms, up to 0.44 N, at most
+// 0.028 mm deep, nothing else touched. Checked with margins: a velum force over 0.1 N while /k/
 // is held (100-200 ms), none at 0.5 s, every step converged, no penetration beyond the
 // 0.1 mm the penalty is chosen for (docs/contact.md).
 TEST_F(EpClosedLoop, KuInTheVocalTractClosesOnTheVelumAndReleasesIt) {
