@@ -37,8 +37,8 @@ struct Rule {
 
 const std::set<std::string>& project_folders() {
   static const std::set<std::string> folders = {
-      "common", "fem",      "model",      "scene",         "scene_run",       "server", "apps",
-      "bus",    "run_file", "controller", "ep_controller", "sequence_player", "replay"};
+      "common", "fem", "model",    "reduced",    "scene",         "scene_run",       "server",
+      "apps",   "bus", "run_file", "controller", "ep_controller", "sequence_player", "replay"};
   return folders;
 }
 
@@ -70,6 +70,10 @@ const std::vector<Rule>& rules() {
        {"common", "fem", "model"},
        {"yaml-cpp", "hdf5", "lcm", "tongue_lcm"},
        "model/ sits on fem/ and common/: no scene/, server/, bus/ or run_file/"},
+      {"sim_server/reduced",
+       {"fem", "reduced"},
+       {"yaml-cpp", "lcm", "tongue_lcm"},
+       "reduced/ sits on the FEM core only: the scene and the apps give it the runs"},
       {"sim_server/run_file",
        {"run_file"},
        {"yaml-cpp", "lcm", "tongue_lcm"},
@@ -168,6 +172,9 @@ TEST(Layering, FemIncludesOnlyFem) {
 }
 TEST(Layering, ModelIncludesNoSceneServerOrBus) {
   expect_clean("sim_server/model");
+}
+TEST(Layering, ReducedIncludesOnlyTheFemCore) {
+  expect_clean("sim_server/reduced");
 }
 TEST(Layering, RunFileIncludesNoFem) {
   expect_clean("sim_server/run_file");

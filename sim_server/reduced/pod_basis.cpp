@@ -1,0 +1,26 @@
+#include "reduced/pod_basis.hpp"
+
+#include <Eigen/SVD>
+#include <stdexcept>
+
+namespace tongue::reduced {
+
+PodBasis pod_basis(const Eigen::MatrixXd& snapshots, double energy_fraction) {
+  if (snapshots.size() == 0) throw std::invalid_argument("POD: no snapshots");
+  if (!(energy_fraction > 0.0 && energy_fraction <= 1.0))
+    throw std::invalid_argument("POD: the energy fraction must lie in (0, 1]");
+  const Eigen::BDCSVD<Eigen::MatrixXd> svd(snapshots, Eigen::ComputeThinU);
+  PodBasis b;
+  b.singular_values = svd.singularValues();
+  const double total = b.singular_values.squaredNorm();
+  if (!(total > 0.0)) throw std::invalid_argument("POD: every snapshot is zero");
+  double sum = 0.0;
+  int k = 0;
+  while (k < b.singular_values.size() && sum < energy_fraction * total)
+    sum += b.singular_values[k] * b.singular_values[k], ++k;
+  b.modes = svd.matrixU().leftCols(k);
+  b.captured = sum / total;
+  return b;
+}
+
+}  // namespace tongue::reduced
