@@ -1,10 +1,11 @@
 // The built-in tongue in the built-in vocal tract, through its scenes: free at rest under
-// gravity; pushed by GGp against the hard palate (/i/) and by SG against the velum (/k/), every
-// step converges and no node penetrates an obstacle deeper than the bound the penalty is chosen
-// for.
+// gravity; pushed by GGp against the hard palate (/i/), by SG against the velum (/k/) and by
+// SL, GGa and GGp against the alveolar ridge (/t/), every step converges and no node penetrates
+// an obstacle deeper than the bound the penalty is chosen for.
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 #include "scene/scene_builder.hpp"
@@ -21,6 +22,7 @@ struct ContactRun {
   double deepest = 0.0;     // m, over the run
   fem::ContactReport last;  // at its end
   std::vector<std::string> obstacles;
+  fem::Mesh mesh;  // the rest positions and the landmarks' node sets
 };
 
 ContactRun run_scene(const std::string& name) {
@@ -31,6 +33,7 @@ ContactRun run_scene(const std::string& name) {
   const fem::RigidContact& contact = *run.built().contact;
   ContactRun out;
   for (const auto& o : contact.obstacles()) out.obstacles.push_back(o->name());
+  out.mesh = run.built().solid->mesh();
   // At rest under gravity the tongue touches nothing.
   EXPECT_TRUE(contact.report(run.displacement()).contacts.empty()) << name;
   const int steps = scene::time_step_count(scene.analysis);
@@ -69,6 +72,36 @@ TEST(TongueInVocalTract, StyloglossusClosesOnTheVelum) {
   const fem::Vec3 f = r.last.obstacle_force.at(obstacle(r, "velum"));
   EXPECT_GT(f.norm(), 0.1);  // 0.37 N measured
   EXPECT_GT(f.y(), 0.0);     // the dorsum pushes the velum up
+}
+
+// The first node of a landmark's node set.
+int landmark(const ContactRun& r, const std::string& name) {
+  return r.mesh.node_sets.at(name).front();
+}
+
+TEST(TongueInVocalTract, SlGgaAndGgpCloseTheTipOnTheAlveolarRidge) {
+  const ContactRun r = run_scene("tongue_t");
+  EXPECT_LT(r.deepest, kPenetrationBound);
+  // The ridge carries the push (1.49 N measured), forward on it.
+  const fem::Vec3 f = r.last.obstacle_force.at(obstacle(r, "hard_palate"));
+  EXPECT_GT(f.norm(), 0.5);
+  EXPECT_GT(f.x(), 0.0);
+  // The tip is in contact, and over the middle 60 % of the width nothing behind the blade is:
+  // the dorsum stays off the palate (the front two rows of the EPG close; behind them only the
+  // lateral margins touch, on the teeth and the palate's sides).
+  const int tip = landmark(r, "tip");
+  const double blade_x = r.mesh.nodes.at(landmark(r, "blade")).x();
+  double half_width = 0.0;
+  for (const fem::Vec3& x : r.mesh.nodes) half_width = std::max(half_width, std::abs(x.z()));
+  bool tip_touches = false;
+  for (const fem::NodeContact& c : r.last.contacts) {
+    tip_touches |= c.node == tip;
+    const fem::Vec3& x = r.mesh.nodes.at(c.node);
+    if (std::abs(x.z()) < 0.6 * half_width) {
+      EXPECT_GT(x.x(), blade_x) << "node " << c.node << " touches behind the blade";
+    }
+  }
+  EXPECT_TRUE(tip_touches);
 }
 
 }  // namespace
