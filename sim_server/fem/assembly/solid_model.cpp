@@ -137,6 +137,14 @@ void SolidModel::scatter(int e, double w, const ElementVector& force,
   }
 }
 
+bool SolidModel::element_force(int e, const Vector& u, ElementVector& force) const {
+  ElementResponse r;
+  if (!evaluate_element(geometry_.at(e), current_coords(e, u), *material_, formulation_, false, r))
+    return false;
+  force = r.force;
+  return true;
+}
+
 AssemblyStatus SolidModel::add_weighted(const Vector& u, const std::vector<double>& weights,
                                         Vector& internal_force, SymmetricMatrix* stiffness,
                                         double* strain_energy) const {

@@ -64,6 +64,12 @@ class SolidModel {
                               Vector& internal_force, SymmetricMatrix* stiffness,
                               double* strain_energy = nullptr) const;
 
+  // The internal force of element e alone at u (full displacement) on its 8 nodes, in the order
+  // of mesh().elements[e] (ElementVector: dof 3a + i) [N]: what assemble() adds for it (to
+  // round-off: uncoupled materials are assembled by the batched kernels); false at an inverted
+  // element. For hyper-reduction, which weighs elements one by one.
+  bool element_force(int e, const Vector& u, ElementVector& force) const;
+
   // Mass matrix over the free dofs [kg]: consistent, or lumped by row sums.
   SymmetricMatrix mass_matrix(bool lumped) const;
   // Body force of a uniform acceleration field (e.g. gravity) [N]: rho g int N_a dV.
