@@ -143,7 +143,6 @@ int run(const Options& o) {
     throw std::invalid_argument(s.source + ": training needs muscles");
   std::vector<std::string> names;
   for (const auto& m : built.muscles->muscles()) names.push_back(m.name);
-  const fem::Mesh mesh = built.solid->mesh();
   scene_run::SceneRun runner(s, std::move(built));
   const fem::StaticReport settled = runner.start();
   if (!settled.converged) throw std::runtime_error("settling failed: " + settled.message);
@@ -157,7 +156,9 @@ int run(const Options& o) {
               s.source.c_str(), static_cast<int>(sequences.size()), steps, dt * 1e3,
               o.training.duration, static_cast<int>(names.size()));
   reduced::SnapshotSet set;
-  std::vector<fem::Vector> columns;
+  // Room for every step of every run; cut to the steps taken at the end.
+  set.snapshots.resize(origin.size(), static_cast<Eigen::Index>(sequences.size()) * steps);
+  Eigen::Index taken = 0;
   int failed = 0;
   const auto started = Clock::now();
   for (const reduced::TrainingSequence& seq : sequences) {
@@ -172,18 +173,15 @@ int run(const Options& o) {
         ++failed;
         break;
       }
-      columns.push_back(runner.displacement() - origin);
+      set.snapshots.col(taken++) = runner.displacement() - origin;
       ++kept;
     }
     set.run_names.push_back(seq.name);
     set.run_snapshots.push_back(kept);
   }
   const double training_s = seconds_since(started);
-  if (columns.empty()) throw std::runtime_error("no training step converged: no snapshot");
-  set.snapshots.resize(origin.size(), static_cast<Eigen::Index>(columns.size()));
-  for (std::size_t c = 0; c < columns.size(); ++c)
-    set.snapshots.col(static_cast<Eigen::Index>(c)) = columns[c];
-  columns.clear();
+  if (taken == 0) throw std::runtime_error("no training step converged: no snapshot");
+  set.snapshots.conservativeResize(Eigen::NoChange, taken);
 
   const auto pod_started = Clock::now();
   const reduced::PodBasis pod = reduced::pod_basis(set.snapshots, o.energy);
@@ -192,15 +190,9 @@ int run(const Options& o) {
               static_cast<int>(sequences.size()), failed, static_cast<int>(set.snapshots.cols()),
               training_s, static_cast<int>(set.snapshots.rows()),
               static_cast<int>(set.snapshots.cols()), pod_s);
-  const double total = pod.singular_values.squaredNorm();
   std::printf("modes for a fraction of the snapshots' energy:");
-  for (const double f : {0.99, 0.999, 0.9999, 0.99999, 0.999999}) {
-    double sum = 0.0;
-    int k = 0;
-    while (k < pod.singular_values.size() && sum < f * total)
-      sum += pod.singular_values[k] * pod.singular_values[k], ++k;
-    std::printf(" %g: %d;", f, k);
-  }
+  for (const double f : {0.99, 0.999, 0.9999, 0.99999, 0.999999})
+    std::printf(" %g: %d;", f, reduced::modes_for(pod.singular_values, f));
   std::printf("\n");
 
   reduced::ReducedBasis basis;
@@ -211,7 +203,7 @@ int run(const Options& o) {
   basis.captured = pod.captured;
   basis.snapshots = static_cast<int>(set.snapshots.cols());
   basis.runs = static_cast<int>(sequences.size());
-  basis.mesh_signature = reduced::mesh_signature(mesh);
+  basis.mesh_signature = reduced::mesh_signature(runner.built().solid->mesh());
   basis.material = material_text(s);
   basis.scene = s.text;
   reduced::write_reduced_basis(o.output, basis);

@@ -5,6 +5,15 @@
 
 namespace tongue::reduced {
 
+int modes_for(const fem::Vector& singular_values, double energy_fraction) {
+  const double goal = energy_fraction * singular_values.squaredNorm();
+  double sum = 0.0;
+  int k = 0;
+  while (k < singular_values.size() && sum < goal)
+    sum += singular_values[k] * singular_values[k], ++k;
+  return k;
+}
+
 PodBasis pod_basis(const Eigen::MatrixXd& snapshots, double energy_fraction) {
   if (snapshots.size() == 0) throw std::invalid_argument("POD: no snapshots");
   if (!(energy_fraction > 0.0 && energy_fraction <= 1.0))
@@ -14,12 +23,9 @@ PodBasis pod_basis(const Eigen::MatrixXd& snapshots, double energy_fraction) {
   b.singular_values = svd.singularValues();
   const double total = b.singular_values.squaredNorm();
   if (!(total > 0.0)) throw std::invalid_argument("POD: every snapshot is zero");
-  double sum = 0.0;
-  int k = 0;
-  while (k < b.singular_values.size() && sum < energy_fraction * total)
-    sum += b.singular_values[k] * b.singular_values[k], ++k;
+  const int k = modes_for(b.singular_values, energy_fraction);
   b.modes = svd.matrixU().leftCols(k);
-  b.captured = sum / total;
+  b.captured = b.singular_values.head(k).squaredNorm() / total;
   return b;
 }
 

@@ -16,6 +16,10 @@ struct PodBasis {
   double captured = 0.0;        // the energy fraction the k modes hold
 };
 
+// The fewest leading singular values (largest first) whose squares sum to at least the fraction
+// of all the squares.
+int modes_for(const fem::Vector& singular_values, double energy_fraction);
+
 // Throws std::invalid_argument for an empty snapshot matrix, snapshots that are all zero, or a
 // fraction outside (0, 1].
 PodBasis pod_basis(const Eigen::MatrixXd& snapshots, double energy_fraction);

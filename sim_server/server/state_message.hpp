@@ -24,8 +24,9 @@ struct StateNotes {
 
 // The state of run's last accepted step, written into msg: the positions of nodes (node
 // indices), last's solver figures and muscle frame (lengths and velocities as step() computed
-// them, not again), the contact of that state (empty without obstacles), notes. Every field is set; msg's vectors keep their storage, so that a
-// message kept from step to step is filled without allocating.
+// them, not again), the contact of that state (empty without obstacles), notes. Every field is
+// set; msg's vectors keep their storage, so that a message kept from step to step is filled
+// without allocating.
 void fill_state_message(tongue_lcm::lcmt_tongue_state& msg, const scene_run::SceneRun& run,
                         const std::vector<int>& nodes, const scene_run::StepResult& last,
                         const fem::ContactReport& contact, const StateNotes& notes);

@@ -100,9 +100,18 @@ void NewtonSolver::split_terms() {
   });
 }
 
+void NewtonSolver::take_terms(NonlinearProblem& problem, const Vector& x) {
+  if (next_terms_known_) {
+    terms_.swap(next_terms_);
+    next_terms_known_ = false;
+  } else {
+    problem.rank_one_terms(x, terms_);
+  }
+}
+
 bool NewtonSolver::correct_factor(NonlinearProblem& problem, const Vector& x,
                                   NewtonReport& report) {
-  problem.rank_one_terms(x, terms_);
+  take_terms(problem, x);
   split_terms();
   // A term on the same unknowns and about the same direction as one of the factor's, with a
   // stiffness within a factor kCloseStiffness of it, is left to the iteration, as the rest of
@@ -218,7 +227,7 @@ bool NewtonSolver::refactorize(NonlinearProblem& problem, const Vector& x, Vecto
   updates_.clear();
   corrections_.clear();
   columns_.clear();
-  problem.rank_one_terms(x, terms_);
+  take_terms(problem, x);
   split_terms();
   factored_terms_ = terms_;
   return true;
@@ -226,6 +235,7 @@ bool NewtonSolver::refactorize(NonlinearProblem& problem, const Vector& x, Vecto
 
 bool NewtonSolver::prepare(NonlinearProblem& problem, const Vector& x) {
   NewtonReport report;
+  next_terms_known_ = false;
   Vector r(x.size());
   if (refactorize(problem, x, r, report)) return true;
   forget_factor();
@@ -233,11 +243,17 @@ bool NewtonSolver::prepare(NonlinearProblem& problem, const Vector& x) {
 }
 
 bool NewtonSolver::same_engaged_terms(NonlinearProblem& problem, const Vector& at) {
-  // terms_ holds the terms engaged at the iterate the step started from (split_terms).
-  problem.rank_one_terms(at, scratch_terms_);
-  std::erase_if(scratch_terms_, [](const RankOneTerm& t) { return !t.engaged(); });
-  return std::equal(terms_.begin(), terms_.end(), scratch_terms_.begin(), scratch_terms_.end(),
-                    [](const RankOneTerm& a, const RankOneTerm& b) { return a.index == b.index; });
+  // terms_ holds the terms engaged at the iterate the step started from (split_terms); those at
+  // `at`, the next iterate, are kept for its correction of the factor (take_terms).
+  problem.rank_one_terms(at, next_terms_);
+  next_terms_known_ = true;
+  auto engaged = terms_.begin();
+  for (const RankOneTerm& t : next_terms_) {
+    if (!t.engaged()) continue;
+    if (engaged == terms_.end() || engaged->index != t.index) return false;
+    ++engaged;
+  }
+  return engaged == terms_.end();
 }
 
 void NewtonSolver::remember(Vector s, Vector y) {
@@ -251,6 +267,7 @@ void NewtonSolver::remember(Vector s, Vector y) {
 
 NewtonReport NewtonSolver::solve(NonlinearProblem& problem, Vector& x, const Vector* origin) {
   NewtonReport report;
+  next_terms_known_ = false;
   const NewtonSettings& s = settings_;
   const bool judge_displacement = s.displacement_tolerance > 0.0;
   const Vector x0 = origin ? *origin : x;

@@ -114,12 +114,17 @@ class NewtonSolver {
   std::vector<Correction> corrections_;               // in force: U, D and Z
   Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_;  // D^-1 + U^T Z
   std::vector<RankOneTerm> terms_;                    // scratch
-  std::vector<RankOneTerm> scratch_terms_;            // scratch of same_engaged_terms
-  std::vector<RankOneTerm> candidates_;               // terms not engaged at the current iterate
-  void split_terms();  // moves the terms of terms_ not engaged to candidates_
-  // Whether the terms engaged at `at` are on the same unknowns as those of terms_. A BFGS pair
-  // taken across a spring that engaged or released would hold the spring's jump as curvature.
+  // The terms at the next iterate, when same_engaged_terms has found them already.
+  std::vector<RankOneTerm> next_terms_;
+  bool next_terms_known_ = false;
+  std::vector<RankOneTerm> candidates_;  // terms not engaged at the current iterate
+  void split_terms();                    // moves the terms of terms_ not engaged to candidates_
+  // Whether the terms engaged at `at` (the next iterate) are on the same unknowns as those of
+  // terms_. A BFGS pair taken across a spring that engaged or released would hold the spring's
+  // jump as curvature.
   bool same_engaged_terms(NonlinearProblem& problem, const Vector& at);
+  // The problem's terms at x into terms_: those same_engaged_terms found, when it did.
+  void take_terms(NonlinearProblem& problem, const Vector& x);
   // Brings corrections_ up to the problem's engaged terms at x; false when more would be
   // needed than re-forming the factor costs.
   bool correct_factor(NonlinearProblem& problem, const Vector& x, NewtonReport& report);
