@@ -12,6 +12,7 @@ packages=(
   libhdf5-dev                      # HDF5 1.10, C and C++
   libyaml-cpp-dev                  # scene files
   libcgal-dev libassimp-dev        # obstacles: spatial index (AABB tree), OBJ and STL files
+  libvigraimpex-dev                # reduced model: the non-negative LASSO path (header-only use)
   libgtest-dev                     # GoogleTest
   python3 python3-h5py python3-numpy  # reading run logs back in tests and scripts
   python3-matplotlib               # scripts/draw_midsagittal.py, scripts/plot_run.py

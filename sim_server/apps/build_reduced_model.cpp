@@ -1,5 +1,5 @@
 // build_reduced_model SCENE.yaml --output BASIS.h5 [--snapshots FILE.h5] [--energy F]
-//                     [--duration S] [--pairs N] [--mixes N] [--seed N]
+//                     [--duration S] [--pairs N] [--mixes N] [--seed N] [--sampling F]
 //
 // The first half of a reduced-order model of a scene: its training data and its reduced basis.
 // The scene's full model is settled under gravity (the origin of the reduced coordinates) and
@@ -7,7 +7,9 @@
 // group stepped and ramped, pairs of groups, random mixes), every step's displacement from the
 // origin kept as a snapshot; the proper orthogonal decomposition of the snapshots
 // (reduced/pod_basis.hpp) gives the basis, the fewest modes that hold the given fraction of the
-// snapshots' energy. Writes the basis (reduced/reduced_basis_file.hpp) and, when asked, the
+// snapshots' energy; energy-conserving sampling (reduced/element_sampling.hpp) picks the
+// elements and weights that reproduce the mesh's reduced internal forces over the snapshots
+// within the fraction --sampling. Writes the basis (reduced/reduced_basis_file.hpp) and, when asked, the
 // snapshots (reduced/snapshot_file.hpp); prints the runs, their time, and the modes that each
 // energy fraction needs.
 //
@@ -24,6 +26,8 @@
 #include <vector>
 
 #include "common/exit_code.hpp"
+#include "reduced/element_reduced_forces.hpp"
+#include "reduced/element_sampling.hpp"
 #include "reduced/pod_basis.hpp"
 #include "reduced/reduced_basis_file.hpp"
 #include "reduced/snapshot_file.hpp"
@@ -37,9 +41,13 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
+// At most this many snapshots, evenly strided, make the sampling's system.
+constexpr Eigen::Index kSamplingSnapshots = 200;
+
 struct Options {
   std::string scene_path, output, snapshots;
   double energy = 0.9999;
+  double sampling = 0.01;
   reduced::TrainingOptions training;
 };
 
@@ -47,7 +55,7 @@ void print_usage(std::FILE* to) {
   std::fprintf(to,
                "usage: build_reduced_model SCENE.yaml --output BASIS.h5 [--snapshots FILE.h5]\n"
                "                           [--energy F] [--duration S] [--pairs N] [--mixes N]\n"
-               "                           [--seed N]\n"
+               "                           [--seed N] [--sampling F]\n"
                "  --output FILE     the reduced basis to write\n"
                "  --snapshots FILE  also write the training snapshots\n"
                "  --energy F        fraction of the snapshots' energy the modes hold (default "
@@ -55,7 +63,9 @@ void print_usage(std::FILE* to) {
                "  --duration S      each training sequence [s] (default 0.3)\n"
                "  --pairs N         sequences with two muscle groups together (default 12)\n"
                "  --mixes N         sequences with every group on at random (default 6)\n"
-               "  --seed N          the training levels' random seed (default 1)\n");
+               "  --seed N          the training levels' random seed (default 1)\n"
+               "  --sampling F      relative misfit of the sampled elements' reduced forces\n"
+               "                    (default 0.01)\n");
 }
 
 std::optional<Options> parse_arguments(int argc, char** argv) {
@@ -88,6 +98,8 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
       (a == "--snapshots" ? o.snapshots : o.output) = *v;
     } else if (a == "--energy") {
       if (!number(o.energy)) return std::nullopt;
+    } else if (a == "--sampling") {
+      if (!number(o.sampling)) return std::nullopt;
     } else if (a == "--duration") {
       if (!number(o.training.duration)) return std::nullopt;
     } else if (a == "--pairs" || a == "--mixes" || a == "--seed") {
@@ -112,6 +124,10 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
   }
   if (!(o.energy > 0.0 && o.energy <= 1.0)) {
     std::fprintf(stderr, "build_reduced_model: --energy must lie in (0, 1]\n");
+    return std::nullopt;
+  }
+  if (!(o.sampling > 0.0 && o.sampling < 1.0)) {
+    std::fprintf(stderr, "build_reduced_model: --sampling must lie in (0, 1)\n");
     return std::nullopt;
   }
   return o;
@@ -195,6 +211,27 @@ int run(const Options& o) {
     std::printf(" %g: %d;", f, reduced::modes_for(pod.singular_values, f));
   std::printf("\n");
 
+  // The sampling's system has k rows per snapshot and a column per element; every few snapshots
+  // are enough to pin the weights (the paper trains on tens to hundreds) and keep it small.
+  const auto sampling_started = Clock::now();
+  const Eigen::Index stride = (set.snapshots.cols() + kSamplingSnapshots - 1) / kSamplingSnapshots;
+  Eigen::MatrixXd sampled(set.snapshots.rows(), (set.snapshots.cols() + stride - 1) / stride);
+  for (Eigen::Index j = 0; j < sampled.cols(); ++j) sampled.col(j) = set.snapshots.col(j * stride);
+  const fem::SolidModel& solid = *runner.built().solid;
+  const reduced::ElementSample sample = reduced::sample_elements(
+      reduced::element_reduced_forces(solid, origin, pod.modes, sampled),
+      static_cast<int>(pod.modes.cols()), o.sampling);
+  std::printf("sampling: %d of %d elements reproduce the reduced forces of %d snapshots within "
+              "%.4f (asked: %g), %.1f s\n",
+              static_cast<int>(sample.elements.size()), solid.mesh().num_elements(),
+              static_cast<int>(sampled.cols()), sample.relative_error, o.sampling,
+              seconds_since(sampling_started));
+  if (!sample.within_tolerance)
+    std::fprintf(stderr,
+                 "build_reduced_model: warning: no sample reached the misfit %g; the best, "
+                 "%.4f, is kept\n",
+                 o.sampling, sample.relative_error);
+
   reduced::ReducedBasis basis;
   basis.origin = origin;
   basis.modes = pod.modes;
@@ -206,6 +243,10 @@ int run(const Options& o) {
   basis.mesh_signature = reduced::mesh_signature(runner.built().solid->mesh());
   basis.material = material_text(s);
   basis.scene = s.text;
+  basis.sample_elements = sample.elements;
+  basis.sample_weights = sample.weights;
+  basis.sample_tolerance = o.sampling;
+  basis.sample_error = sample.relative_error;
   reduced::write_reduced_basis(o.output, basis);
   std::printf("basis: %d modes holding %.8f of the energy -> %s\n",
               static_cast<int>(pod.modes.cols()), pod.captured, o.output.c_str());

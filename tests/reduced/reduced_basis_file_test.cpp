@@ -33,6 +33,10 @@ class ReducedFiles : public testing::TempDirTest {
     b.mesh_signature = mesh_signature(mesh);
     b.material = "neo_hookean shear_modulus=1000";
     b.scene = "analysis: {type: dynamic}\n";
+    b.sample_elements = {1, 4, 6};
+    b.sample_weights = fem::Vector::LinSpaced(3, 2.5, 0.75);
+    b.sample_tolerance = 0.01;
+    b.sample_error = 0.0087;
     return b;
   }
   void expect_error_naming(const std::string& path, const std::string& part) {
@@ -62,6 +66,10 @@ TEST_F(ReducedFiles, BasisIsReadBackExactly) {
   EXPECT_EQ(r.mesh_signature, b.mesh_signature);
   EXPECT_EQ(r.material, b.material);
   EXPECT_EQ(r.scene, b.scene);
+  EXPECT_EQ(r.sample_elements, b.sample_elements);
+  EXPECT_EQ(r.sample_weights, b.sample_weights);
+  EXPECT_EQ(r.sample_tolerance, b.sample_tolerance);
+  EXPECT_EQ(r.sample_error, b.sample_error);
   EXPECT_NO_THROW(check_fits(r, path, mesh, b.material));
 }
 
@@ -78,6 +86,21 @@ TEST_F(ReducedFiles, ABasisForAnotherMeshOrMaterialIsRefused) {
         << e.what();
   }
   EXPECT_THROW(check_fits(b, "basis.h5", mesh, "mooney_rivlin5"), std::invalid_argument);
+  ReducedBasis beyond = b;
+  beyond.sample_elements.back() = mesh.num_elements();  // one past the last
+  EXPECT_THROW(check_fits(beyond, "basis.h5", mesh, b.material), std::invalid_argument);
+}
+
+TEST_F(ReducedFiles, ABasisWithoutASampleOrWithABadWeightIsRefused) {
+  const std::string path = (dir_ / "basis.h5").string();
+  ReducedBasis b = basis();
+  b.sample_weights[1] = 0.0;  // a sampled element must weigh something
+  write_reduced_basis(path, b);
+  expect_error_naming(path, "not a finite positive number");
+  b.sample_elements.clear();
+  b.sample_weights.resize(0);
+  write_reduced_basis(path, b);
+  expect_error_naming(path, "are empty");
 }
 
 TEST_F(ReducedFiles, MissingForeignAndOtherHdf5FilesAreRefused) {

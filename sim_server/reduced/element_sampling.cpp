@@ -1,0 +1,106 @@
+#include "reduced/element_sampling.hpp"
+
+#include <Eigen/QR>
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+#include <vigra/matrix.hxx>
+#include <vigra/regression.hxx>
+
+namespace tongue::reduced {
+
+namespace {
+
+// || a w - b || for the weights w on the given columns of a.
+double misfit(const vigra::linalg::Matrix<double>& a, const vigra::linalg::Matrix<double>& b,
+              const vigra::ArrayVector<vigra::MultiArrayIndex>& columns,
+              const vigra::linalg::Matrix<double>& w) {
+  Eigen::VectorXd r(a.shape(0));
+  for (Eigen::Index i = 0; i < r.size(); ++i) r[i] = -b(i, 0);
+  for (unsigned j = 0; j < columns.size(); ++j)
+    for (Eigen::Index i = 0; i < r.size(); ++i) r[i] += a(i, columns[j]) * w(j, 0);
+  return r.norm();
+}
+
+}  // namespace
+
+ElementSample sample_elements(const Eigen::MatrixXd& g, int k, double tolerance) {
+  if (k <= 0 || g.rows() == 0 || g.rows() % k != 0)
+    throw std::invalid_argument("element sampling: " + std::to_string(g.rows()) +
+                                " rows are not a whole number of snapshots of " +
+                                std::to_string(k) + " modes");
+  if (g.cols() == 0) throw std::invalid_argument("element sampling: no element");
+  if (!(tolerance > 0.0 && tolerance < 1.0))
+    throw std::invalid_argument("element sampling: the tolerance must lie in (0, 1)");
+  const Eigen::Index E = g.cols(), S = g.rows() / k;
+  Eigen::MatrixXd scaled(g.rows(), E);
+  for (Eigen::Index s = 0; s < S; ++s) {
+    const double norm = g.middleRows(s * k, k).rowwise().sum().norm();
+    // A snapshot without force has nothing to reproduce and drops out.
+    scaled.middleRows(s * k, k) = (norm > 0.0 ? 1.0 / norm : 0.0) * g.middleRows(s * k, k);
+  }
+  // The target G 1 lies in G's range, so || G w - G 1 || = || R (w - 1) || with G = Q R: the path
+  // is found on R's at most E rows instead of G's S k (the correlations G^T r = R^T Q^T r and the
+  // columns' norms are the same), with the same result.
+  Eigen::MatrixXd r;
+  if (scaled.rows() > E) {
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(scaled);
+    r = qr.matrixQR().topRows(E).triangularView<Eigen::Upper>();
+  } else {
+    r = scaled;
+  }
+  const Eigen::Index rows = r.rows();
+  vigra::linalg::Matrix<double> a(rows, E), b(rows, 1);
+  for (Eigen::Index i = 0; i < rows; ++i) {
+    double sum = 0.0;
+    for (Eigen::Index e = 0; e < E; ++e) sum += (a(i, e) = r(i, e));
+    b(i, 0) = sum;
+  }
+  double b_norm = 0.0;
+  for (Eigen::Index i = 0; i < rows; ++i) b_norm += b(i, 0) * b(i, 0);
+  b_norm = std::sqrt(b_norm);
+  if (!(b_norm > 0.0)) throw std::invalid_argument("element sampling: every snapshot's force is 0");
+
+  vigra::ArrayVector<vigra::ArrayVector<vigra::MultiArrayIndex>> active;
+  vigra::ArrayVector<vigra::linalg::Matrix<double>> lasso, least_squares;
+  const unsigned points = vigra::linalg::leastAngleRegression(
+      a, b, active, lasso, least_squares, vigra::linalg::LeastAngleRegressionOptions().nnlasso());
+  ElementSample best;
+  best.relative_error = 1.0;  // w = 0
+  for (unsigned p = 0; p < points; ++p) {
+    // On each active set the unconstrained least-squares weights fit best; the LASSO's, shrunk
+    // towards 0, stand in when those are not all positive.
+    const auto& set = active[p];
+    const vigra::linalg::Matrix<double>* w = &least_squares[p];
+    for (unsigned j = 0; j < set.size(); ++j)
+      if (!((*w)(j, 0) > 0.0)) w = &lasso[p];
+    const double error = misfit(a, b, set, *w) / b_norm;
+    if (error >= best.relative_error && p + 1 < points) continue;
+    if (error < best.relative_error) {
+      best.elements.assign(set.begin(), set.end());
+      best.weights.resize(static_cast<Eigen::Index>(set.size()));
+      for (unsigned j = 0; j < set.size(); ++j) best.weights[j] = (*w)(j, 0);
+      best.relative_error = error;
+    }
+    if (error <= tolerance) {
+      best.within_tolerance = true;
+      break;
+    }
+  }
+  // Zero weights (the LASSO's at a knot where an element leaves) are no sample; then ascending.
+  std::vector<std::pair<int, double>> kept;
+  for (std::size_t j = 0; j < best.elements.size(); ++j)
+    if (best.weights[static_cast<Eigen::Index>(j)] > 0.0)
+      kept.emplace_back(best.elements[j], best.weights[static_cast<Eigen::Index>(j)]);
+  std::sort(kept.begin(), kept.end());
+  best.elements.clear();
+  best.weights.resize(static_cast<Eigen::Index>(kept.size()));
+  for (std::size_t j = 0; j < kept.size(); ++j) {
+    best.elements.push_back(kept[j].first);
+    best.weights[static_cast<Eigen::Index>(j)] = kept[j].second;
+  }
+  return best;
+}
+
+}  // namespace tongue::reduced
