@@ -9,9 +9,9 @@
 // (reduced/pod_basis.hpp) gives the basis, the fewest modes that hold the given fraction of the
 // snapshots' energy; energy-conserving sampling (reduced/element_sampling.hpp) picks the
 // elements and weights that reproduce the mesh's reduced internal forces over the snapshots
-// within the fraction --sampling. Writes the basis (reduced/reduced_basis_file.hpp) and, when asked, the
-// snapshots (reduced/snapshot_file.hpp); prints the runs, their time, and the modes that each
-// energy fraction needs.
+// within the fraction --sampling. Writes the basis (reduced/reduced_basis_file.hpp) and, when
+// asked, the snapshots (reduced/snapshot_file.hpp); prints the runs, their time, and the modes that
+// each energy fraction needs.
 //
 // A training step that fails to converge ends its sequence there (its snapshots so far are
 // kept) and is reported; the basis is still made from the rest. Exit status: 0 done; 1 bad
@@ -218,14 +218,15 @@ int run(const Options& o) {
   Eigen::MatrixXd sampled(set.snapshots.rows(), (set.snapshots.cols() + stride - 1) / stride);
   for (Eigen::Index j = 0; j < sampled.cols(); ++j) sampled.col(j) = set.snapshots.col(j * stride);
   const fem::SolidModel& solid = *runner.built().solid;
-  const reduced::ElementSample sample = reduced::sample_elements(
-      reduced::element_reduced_forces(solid, origin, pod.modes, sampled),
-      static_cast<int>(pod.modes.cols()), o.sampling);
-  std::printf("sampling: %d of %d elements reproduce the reduced forces of %d snapshots within "
-              "%.4f (asked: %g), %.1f s\n",
-              static_cast<int>(sample.elements.size()), solid.mesh().num_elements(),
-              static_cast<int>(sampled.cols()), sample.relative_error, o.sampling,
-              seconds_since(sampling_started));
+  const reduced::ElementSample sample =
+      reduced::sample_elements(reduced::element_reduced_forces(solid, origin, pod.modes, sampled),
+                               static_cast<int>(pod.modes.cols()), o.sampling);
+  std::printf(
+      "sampling: %d of %d elements reproduce the reduced forces of %d snapshots within "
+      "%.4f (asked: %g), %.1f s\n",
+      static_cast<int>(sample.elements.size()), solid.mesh().num_elements(),
+      static_cast<int>(sampled.cols()), sample.relative_error, o.sampling,
+      seconds_since(sampling_started));
   if (!sample.within_tolerance)
     std::fprintf(stderr,
                  "build_reduced_model: warning: no sample reached the misfit %g; the best, "

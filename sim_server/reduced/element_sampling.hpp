@@ -16,9 +16,9 @@
 namespace tongue::reduced {
 
 struct ElementSample {
-  std::vector<int> elements;  // ascending
-  fem::Vector weights;        // > 0, one per sampled element
-  double relative_error = 0.0;  // || G w - G 1 || / || G 1 || over the scaled rows
+  std::vector<int> elements;      // ascending
+  fem::Vector weights;            // > 0, one per sampled element
+  double relative_error = 0.0;    // || G w - G 1 || / || G 1 || over the scaled rows
   bool within_tolerance = false;  // false: the whole path stayed above it (the last point kept)
 };
 

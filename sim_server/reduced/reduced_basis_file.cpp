@@ -73,8 +73,9 @@ ReducedBasis read_reduced_basis(const std::string& path) {
   const Hdf5File f(path, false);
   const std::string format = detail::read_text(f, "format");
   if (format == kFormatWithoutSample)
-    f.fail("a reduced basis without an element sample (made before hyper-reduction): make it "
-           "again with build_reduced_model");
+    f.fail(
+        "a reduced basis without an element sample (made before hyper-reduction): make it "
+        "again with build_reduced_model");
   if (format != kFormat)
     f.fail(std::string("not a reduced-basis file (format is not ") + kFormat + ")");
   ReducedBasis b;

@@ -32,9 +32,9 @@ class BuildReducedModel : public testing::TempDirTest {
 // 80 ms per sequence (10 steps of scenes/tongue_ep.yaml's 8 ms), one pair, one mix.
 TEST_F(BuildReducedModel, TheBasisReproducesTheTrainingSnapshotsToItsEnergyFraction) {
   const std::string scene = PROJECT_DIR "/scenes/tongue_ep.yaml";
-  const testing::RunResult r =
-      run("'" + scene + "' --output '" + path("basis.h5") + "' --snapshots '" +
-          path("snapshots.h5") + "' --duration 0.08 --pairs 1 --mixes 1 --energy 0.999");
+  const testing::RunResult r = run(
+      "'" + scene + "' --output '" + path("basis.h5") + "' --snapshots '" + path("snapshots.h5") +
+      "' --duration 0.08 --pairs 1 --mixes 1 --energy 0.999 --sampling 0.2");
   ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_NE(r.out.find("22 training runs of 10 steps"), std::string::npos) << r.out;
 
@@ -55,6 +55,13 @@ TEST_F(BuildReducedModel, TheBasisReproducesTheTrainingSnapshotsToItsEnergyFract
   const Eigen::MatrixXd left = s.snapshots - b.modes * (b.modes.transpose() * s.snapshots);
   EXPECT_LE(left.squaredNorm(), (1.0 - 0.999) * s.snapshots.squaredNorm());
   EXPECT_GE(b.captured, 0.999);
+  // A sample of the elements within the misfit asked (a loose one: the sampling's path is
+  // longer the tighter it is), fewer than the mesh's 720, with positive weights.
+  EXPECT_LE(b.sample_error, 0.2);
+  EXPECT_EQ(b.sample_tolerance, 0.2);
+  EXPECT_GT(b.sample_elements.size(), 0u);
+  EXPECT_LT(b.sample_elements.size(), 720u);
+  EXPECT_GT(b.sample_weights.minCoeff(), 0.0);
   // The tongue moves in the training runs (millimetres), from the settled origin.
   EXPECT_GT(s.snapshots.cwiseAbs().maxCoeff(), 1e-4);
   // The basis fits the scene's mesh, not another one.

@@ -40,8 +40,8 @@ TEST(ElementSampling, AFewElementsReproduceTheMeshsReducedForces) {
   for (int a = 0; a < mesh.num_nodes(); ++a) {
     const fem::Vec3& x = mesh.nodes[a];
     const double s = x.x() / 0.06;
-    fields.block<3, 1>(3 * a, 0) = fem::Vec3(0.0, 0.0, s * s);                      // bending
-    fields.block<3, 1>(3 * a, 1) = fem::Vec3(0.0, s * s, 0.0);                      // sideways
+    fields.block<3, 1>(3 * a, 0) = fem::Vec3(0.0, 0.0, s * s);                         // bending
+    fields.block<3, 1>(3 * a, 1) = fem::Vec3(0.0, s * s, 0.0);                         // sideways
     fields.block<3, 1>(3 * a, 2) = s * fem::Vec3(0.0, -(x.z() - 0.01), x.y() - 0.01);  // twist
   }
   std::srand(7);

@@ -5,9 +5,11 @@
 namespace tongue::fem {
 
 AssemblyStatus MechanicalSystem::residual(const Vector& u, double load_factor, Vector& r,
-                                          SymmetricMatrix* stiffness, double* load_norm) const {
+                                          SymmetricMatrix* stiffness, double* load_norm,
+                                          const std::vector<double>* element_weights) const {
   // Loads that scale the solid's energy element by element ride along in one element pass.
   std::vector<double> weights;
+  if (element_weights) weights = *element_weights;
   std::vector<char> folded(loads_.size());
   for (std::size_t i = 0; i < loads_.size(); ++i)
     folded[i] = loads_[i]->add_element_weights(load_factor, weights);

@@ -24,9 +24,12 @@ class MechanicalSystem {
   // are folded into one element pass, ForceContribution::add_element_weights) (the entries at
   // prescribed dofs are the negated reactions); when stiffness is given, dr/du over the free dofs.
   // When load_norm is given it receives ||load_factor f_ext(u)|| over the free dofs [N], a scale
-  // for r.
+  // for r. With element_weights (one per element) the solid's own elements count with those
+  // weights instead of 1, elements of weight 0 not evaluated (hyper-reduction integrates over a
+  // weighted sample of them); the folded loads add theirs on top.
   AssemblyStatus residual(const Vector& u, double load_factor, Vector& r,
-                          SymmetricMatrix* stiffness, double* load_norm = nullptr) const;
+                          SymmetricMatrix* stiffness, double* load_norm = nullptr,
+                          const std::vector<double>* element_weights = nullptr) const;
   // The loads' springs at u (ForceContribution::add_springs) as rank-one terms of the tangent
   // over the free dofs, in the loads' order.
   void rank_one_terms(const Vector& u, std::vector<RankOneTerm>& terms) const;

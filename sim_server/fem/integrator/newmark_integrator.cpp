@@ -1,7 +1,6 @@
 #include "fem/integrator/newmark_integrator.hpp"
 
 #include <chrono>
-#include <sstream>
 #include <stdexcept>
 
 namespace tongue::fem {
@@ -223,14 +222,7 @@ bool NewmarkIntegrator::advance(double dt, StepReport& report, int depth) {
     ++report.substeps;
     return true;
   }
-  std::ostringstream why;
-  why << "t = " << t_ << " s, dt = " << dt << " s: " << newton.failure;
-  if (depth >= settings_.max_cuts) {
-    report.message += (report.message.empty() ? "" : "; ") + why.str() + "; no cuts left";
-    return false;
-  }
-  ++report.cuts;
-  report.message += (report.message.empty() ? "" : "; ") + why.str() + ", step halved";
+  if (!report.cut(t_, dt, newton.failure, depth < settings_.max_cuts)) return false;
   return advance(0.5 * dt, report, depth + 1) && advance(0.5 * dt, report, depth + 1);
 }
 

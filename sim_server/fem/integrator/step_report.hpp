@@ -2,6 +2,7 @@
 // What one step of a solver did: every step records it, so no unconverged or cut step goes
 // unreported.
 #include <algorithm>
+#include <sstream>
 #include <string>
 
 #include "fem/solver/newton_solver.hpp"
@@ -28,6 +29,17 @@ struct StepReport {
   std::string message;  // why a cut happened or why the step failed; empty when clean
   int newton_solves = 0;
 
+  // Records a failed (sub)step of dt at time t [s]: with cuts left it counts a cut and says the
+  // step is halved, and returns true (the caller retries in halves); otherwise says no cuts are
+  // left and returns false.
+  bool cut(double t, double dt, const std::string& failure, bool cuts_left) {
+    std::string why = "t = " + number(t) + " s, dt = " + number(dt) + " s: " + failure;
+    why += cuts_left ? ", step halved" : "; no cuts left";
+    message += (message.empty() ? "" : "; ") + why;
+    if (cuts_left) ++cuts;
+    return cuts_left;
+  }
+
   // Adds the figures of one Newton solve (a step, a substep or a retried increment).
   void add(const NewtonReport& newton) {
     if (newton_solves++ == 0) initial_residual = newton.initial_residual;
@@ -40,6 +52,13 @@ struct StepReport {
     assembly_seconds += newton.assembly_seconds;
     factorization_seconds += newton.factorization_seconds;
     solve_seconds += newton.solve_seconds;
+  }
+
+ private:
+  static std::string number(double x) {
+    std::ostringstream out;
+    out << x;
+    return out.str();
   }
 };
 

@@ -1,0 +1,268 @@
+#include "reduced/reduced_integrator.hpp"
+
+#include <chrono>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace tongue::reduced {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The displacement tolerance when the scene sets none [m]: far below the basis' own error.
+constexpr double kDefaultTolerance = 1e-8;
+// Largest entry of a unit mode at a dof no snapshot moves that counts as round-off.
+constexpr double kPrescribedRoundOff = 1e-10;
+// As the full solver: the first correction of a step is judged with at least this contraction,
+// and the factor is re-formed when the corrections contract by less than this ratio.
+constexpr double kFirstContraction = 0.5;
+constexpr double kReformContraction = 0.5;
+
+}  // namespace
+
+// One step's Newmark updates in reduced coordinates (Bathe 1996, sec. 9.2.4).
+struct ReducedIntegrator::Step {
+  double dt, beta, gamma, c0, c1;
+  const fem::Vector &q, &qd, &qdd;
+  fem::Vector acceleration(const fem::Vector& x) const {
+    return c0 * (x - q - dt * qd) - (0.5 / beta - 1.0) * qdd;
+  }
+  fem::Vector velocity(const fem::Vector& a) const {
+    return qd + dt * ((1.0 - gamma) * qdd + gamma * a);
+  }
+};
+
+ReducedIntegrator::ReducedIntegrator(const fem::MechanicalSystem& system, ReducedBasis basis,
+                                     fem::DynamicSettings settings)
+    : system_(system),
+      basis_(std::move(basis)),
+      settings_(settings),
+      phi_(basis_.modes),
+      mass_(system.solid().mass_matrix(settings.lumped_mass)) {
+  const fem::SolidModel& solid = system.solid();
+  const fem::DofMap& dofs = solid.dofs();
+  if (phi_.rows() != solid.num_dofs() || basis_.origin.size() != solid.num_dofs())
+    throw std::invalid_argument("reduced model: the basis has " + std::to_string(phi_.rows()) +
+                                " rows, the model " + std::to_string(solid.num_dofs()) + " dofs");
+  // The snapshots never move a prescribed dof; what the SVD leaves there is round-off.
+  for (int dof : dofs.prescribed_dofs()) {
+    if (phi_.row(dof).cwiseAbs().maxCoeff() > kPrescribedRoundOff)
+      throw std::invalid_argument("reduced model: a mode moves prescribed dof " +
+                                  std::to_string(dof) + " (the basis was made for other supports)");
+    phi_.row(dof).setZero();
+  }
+  phi_free_.resize(dofs.num_free(), phi_.cols());
+  for (Eigen::Index j = 0; j < phi_.cols(); ++j) phi_free_.col(j) = dofs.gather_free(phi_.col(j));
+  weights_.assign(static_cast<std::size_t>(solid.mesh().num_elements()), 0.0);
+  for (std::size_t j = 0; j < basis_.sample_elements.size(); ++j)
+    weights_.at(static_cast<std::size_t>(basis_.sample_elements[j])) =
+        basis_.sample_weights[static_cast<Eigen::Index>(j)];
+  mass_r_ = project(mass_);
+  lumped_mass_ = mass_.multiply(fem::Vector::Ones(dofs.num_free()));
+  // The sample's internal force differs from the mesh's by a little everywhere, also at the
+  // origin, which is the full model's equilibrium: the difference there is added back, so that
+  // the reduced model rests where the full one does.
+  fem::Vector whole, sampled = fem::Vector::Zero(solid.num_dofs());
+  if (!solid.assemble(basis_.origin, whole, nullptr).ok ||
+      !solid.add_weighted(basis_.origin, weights_, sampled, nullptr).ok)
+    throw std::invalid_argument("reduced model: the basis' origin inverts an element");
+  origin_correction_ = phi_.transpose() * (whole - sampled);
+  const int k = num_modes();
+  q_ = qd_ = qdd_ = fem::Vector::Zero(k);
+  reconstruct();
+}
+
+Eigen::MatrixXd ReducedIntegrator::project(const fem::SymmetricMatrix& a) const {
+  Eigen::MatrixXd product(phi_free_.rows(), phi_free_.cols());
+  for (Eigen::Index j = 0; j < phi_free_.cols(); ++j) product.col(j) = a.multiply(phi_free_.col(j));
+  const Eigen::MatrixXd p = phi_free_.transpose() * product;
+  return 0.5 * (p + p.transpose());
+}
+
+void ReducedIntegrator::reconstruct() {
+  u_ = basis_.origin + phi_ * q_;
+  v_ = phi_ * qd_;
+}
+
+bool ReducedIntegrator::reduced_force(const fem::Vector& q, fem::Vector& f, fem::SymmetricMatrix* K,
+                                      double* load_norm) const {
+  fem::Vector r;
+  const fem::Vector u = basis_.origin + phi_ * q;
+  if (!system_.residual(u, 1.0, r, K, load_norm, &weights_).ok) return false;
+  f.noalias() = phi_.transpose() * r;
+  f += origin_correction_;
+  return f.allFinite();
+}
+
+void ReducedIntegrator::initialize(const fem::Vector& u0, const fem::Vector& v0, double t0) {
+  q_ = phi_.transpose() * (u0 - basis_.origin);
+  qd_ = phi_.transpose() * v0;
+  t_ = t0;
+  reconstruct();
+  const fem::SolidModel& solid = system_.solid();
+  const fem::RayleighDamping& d = settings_.damping;
+  damping_r_ = d.mass_coefficient * mass_r_;
+  if (d.stiffness_coefficient != 0.0) {
+    // K0 of the whole solid, loads left out, as the full integrator's damping has it.
+    stiffness0_.emplace(solid.pattern());
+    fem::Vector f;
+    if (!solid.assemble(u_, f, &*stiffness0_).ok)
+      throw std::runtime_error("initial state has an inverted element");
+    damping_r_ += d.stiffness_coefficient * project(*stiffness0_);
+  }
+  fem::Vector f;
+  if (!reduced_force(q_, f, nullptr, nullptr))
+    throw std::runtime_error("initial state has an inverted element");
+  qdd_ = mass_r_.ldlt().solve(-f - damping_r_ * qd_);
+  tangent_dt_ = 0.0;
+  contraction_ = -1.0;
+  in_equilibrium_ = false;
+}
+
+bool ReducedIntegrator::form_tangent(const fem::Vector& q, double dt) {
+  const fem::NewmarkParameters& p = settings_.newmark;
+  fem::SymmetricMatrix K(system_.solid().pattern());
+  fem::Vector f;
+  if (!reduced_force(q, f, &K, nullptr)) return false;
+  tangent_.compute(project(K) + mass_r_ / (p.beta * dt * dt) +
+                   damping_r_ * (p.gamma / (p.beta * dt)));
+  if (tangent_.info() != Eigen::Success || !tangent_.isPositive()) return false;
+  tangent_dt_ = dt;
+  contraction_ = -1.0;
+  return true;
+}
+
+void ReducedIntegrator::prepare(double dt) {
+  form_tangent(q_ + dt * qd_, dt);
+}
+
+fem::StepReport ReducedIntegrator::step(double dt) {
+  const auto start = Clock::now();
+  fem::StepReport report;
+  report.dt = dt;
+  report.substeps = 0;
+  report.converged = advance(dt, report, 0);
+  report.time = t_;
+  in_equilibrium_ = report.converged && report.iterations == 0;
+  report.wall_seconds = seconds_since(start);
+  return report;
+}
+
+bool ReducedIntegrator::at_rest() const {
+  return in_equilibrium_ && v_.lpNorm<Eigen::Infinity>() <= fem::NewmarkIntegrator::kRestSpeed;
+}
+
+fem::StepReport ReducedIntegrator::hold(double dt) {
+  if (!at_rest()) throw std::logic_error("ReducedIntegrator::hold: the state is not at rest");
+  t_ += dt;
+  fem::StepReport report;
+  report.dt = dt;
+  report.time = t_;
+  report.converged = true;
+  report.held = true;
+  return report;
+}
+
+bool ReducedIntegrator::advance(double dt, fem::StepReport& report, int depth) {
+  const fem::NewmarkParameters& p = settings_.newmark;
+  const fem::NewtonSettings& ns = settings_.newton;
+  const Step s{dt, p.beta, p.gamma, 1.0 / (p.beta * dt * dt), p.gamma / (p.beta * dt),
+               q_, qd_,    qdd_};
+  const double tolerance =
+      ns.displacement_tolerance > 0.0 ? ns.displacement_tolerance : kDefaultTolerance;
+  fem::Vector x = q_ + dt * qd_;  // the constant-velocity predictor, as the full model's
+  fem::Vector f, r;
+  std::string failure;
+  double previous = 0.0, load_norm = 0.0;
+  bool converged = false;
+  fem::NewtonReport newton;
+  for (int k = 0; k < ns.max_iterations && failure.empty(); ++k) {
+    auto started = Clock::now();
+    ++newton.residual_evaluations;
+    if (!reduced_force(x, f, nullptr, &load_norm)) {
+      failure = "an element inverted";
+      break;
+    }
+    const fem::Vector a = s.acceleration(x);
+    r = mass_r_ * a + damping_r_ * s.velocity(a) + f;
+    newton.assembly_seconds += seconds_since(started);
+    if (k == 0) {
+      newton.initial_residual = r.norm();
+      // Already in equilibrium: the predictor stands, as in the full solver's residual test.
+      if (newton.initial_residual <= std::max(ns.residual_rtol * load_norm, ns.residual_atol)) {
+        converged = true;
+        break;
+      }
+    }
+    newton.final_residual = r.norm();
+    if (tangent_dt_ != dt || (k > 0 && contraction_ > kReformContraction)) {
+      started = Clock::now();
+      if (!form_tangent(x, dt)) {
+        failure = "the reduced tangent is not positive definite";
+        break;
+      }
+      ++newton.factorizations;
+      newton.factorization_seconds += seconds_since(started);
+      previous = 0.0;
+    }
+    started = Clock::now();
+    const fem::Vector dq = tangent_.solve(-r);
+    newton.solve_seconds += seconds_since(started);
+    newton.iterations = k + 1;
+    if (!dq.allFinite()) {
+      failure = "the reduced solve gave a non-finite correction";
+      break;
+    }
+    x += dq;
+    // The error left, as the full solver estimates it (newton_solver.hpp), in the nodes'
+    // displacement.
+    const double size = (phi_ * dq).lpNorm<Eigen::Infinity>();
+    if (previous > 0.0) contraction_ = size / previous;
+    const double rho = previous > 0.0 ? contraction_ : std::max(contraction_, kFirstContraction);
+    newton.error_estimate =
+        rho < 1.0 ? size * rho / (1.0 - rho) : std::numeric_limits<double>::infinity();
+    previous = size;
+    if (newton.error_estimate <= tolerance) {
+      converged = true;
+      break;
+    }
+  }
+  newton.converged = converged;
+  report.add(newton);
+  if (converged) {
+    const fem::Vector a = s.acceleration(x);
+    qd_ = s.velocity(a);
+    qdd_ = a;
+    q_ = x;
+    t_ += dt;
+    reconstruct();
+    ++report.substeps;
+    return true;
+  }
+  if (failure.empty())
+    failure = "no convergence in " + std::to_string(ns.max_iterations) + " iterations";
+  tangent_dt_ = 0.0;
+  if (!report.cut(t_, dt, "reduced model: " + failure, depth < settings_.max_cuts)) return false;
+  return advance(0.5 * dt, report, depth + 1) && advance(0.5 * dt, report, depth + 1);
+}
+
+double ReducedIntegrator::full_residual() const {
+  const fem::DofMap& dofs = system_.solid().dofs();
+  fem::Vector r;
+  if (!system_.residual(u_, 1.0, r, nullptr).ok) return std::numeric_limits<double>::infinity();
+  fem::Vector dynamic = dofs.gather_free(r) + mass_.multiply(phi_free_ * qdd_);
+  if (stiffness0_ || settings_.damping.mass_coefficient != 0.0) {
+    const fem::Vector v = phi_free_ * qd_;
+    dynamic += settings_.damping.mass_coefficient * mass_.multiply(v);
+    if (stiffness0_) dynamic += settings_.damping.stiffness_coefficient * stiffness0_->multiply(v);
+  }
+  // Each dof's force imbalance over its share of the mass: the acceleration it lacks.
+  return dynamic.cwiseQuotient(lumped_mass_).lpNorm<Eigen::Infinity>();
+}
+
+}  // namespace tongue::reduced

@@ -1,0 +1,88 @@
+#pragma once
+// The Newmark dynamics of fem::NewmarkIntegrator in reduced coordinates: u = origin + Phi q, the
+// equations of motion projected onto the modes (Galerkin),
+//   M_r q'' + C_r q' + Phi^T (f_int(u) - f_ext(u)) = 0,  M_r = Phi^T M Phi,
+//   C_r = alpha M_r + beta_R Phi^T K0 Phi,
+// stepped by the same Newmark rule and solved by Newton on the k reduced coordinates with a
+// dense factor of the reduced tangent, reused across iterations and steps as the full solver
+// does. The solid's internal force is integrated over the basis' sample of elements with their
+// weights (energy-conserving sampling and weighting: Farhat, Avery, Chapman & Cortial 2014,
+// Int. J. Numer. Meth. Eng. 98); the loads, the muscles' fibre forces and their active
+// stiffening among them, are evaluated on the whole reconstructed displacement and projected
+// exactly; the sample's force is corrected by a constant, its difference from the mesh's at the
+// origin, so that the origin stays an equilibrium. The modes are zero at the prescribed dofs (every
+// snapshot is), so u keeps the origin's prescribed values.
+#include <Eigen/Cholesky>
+
+#include "fem/integrator/mechanical_system.hpp"
+#include "fem/integrator/newmark_integrator.hpp"
+#include "fem/integrator/step_report.hpp"
+#include "reduced/reduced_basis_file.hpp"
+
+namespace tongue::reduced {
+
+class ReducedIntegrator {
+ public:
+  // The basis must fit the system's mesh (check_fits). Throws std::invalid_argument when its
+  // sizes do not fit or a mode moves a prescribed dof.
+  ReducedIntegrator(const fem::MechanicalSystem& system, ReducedBasis basis,
+                    fem::DynamicSettings settings);
+
+  // The state nearest u0, v0 in the basis (their projections: the modes are orthonormal), the
+  // consistent reduced acceleration, K0 for the damping. Throws std::runtime_error when the
+  // forces cannot be evaluated there.
+  void initialize(const fem::Vector& u0, const fem::Vector& v0, double t0 = 0.0);
+  // Forms and factorizes the reduced tangent of a step of dt at the predictor.
+  void prepare(double dt);
+  // Advances by dt; cuts and retries on failure like fem::NewmarkIntegrator::step.
+  fem::StepReport step(double dt);
+  // As fem::NewmarkIntegrator: the last step needed no correction and nothing moves faster than
+  // fem::NewmarkIntegrator::kRestSpeed.
+  bool at_rest() const;
+  fem::StepReport hold(double dt);
+
+  // The full model's dynamic residual at the current reduced state, R = M a + C v + f_int - f_ext
+  // over the free dofs with every element, as the acceleration it leaves unexplained,
+  // max_i |R_i| / m_i with m_i the dof's lumped mass [m/s^2]: zero for a state of the full
+  // model, and what the basis cannot represent otherwise. Costs one full residual evaluation.
+  double full_residual() const;
+
+  // Full vectors, reconstructed from the reduced state.
+  const fem::Vector& displacement() const { return u_; }
+  const fem::Vector& velocity() const { return v_; }
+  double time() const { return t_; }
+  int num_modes() const { return static_cast<int>(phi_.cols()); }
+  int num_sampled_elements() const { return static_cast<int>(basis_.sample_elements.size()); }
+
+ private:
+  struct Step;
+  bool advance(double dt, fem::StepReport& report, int depth);
+  // Phi^T r(u) with the sample's weights; false at an inverted element.
+  bool reduced_force(const fem::Vector& q, fem::Vector& f, fem::SymmetricMatrix* K,
+                     double* load_norm) const;
+  // Phi_f^T A Phi_f for a matrix over the free dofs.
+  Eigen::MatrixXd project(const fem::SymmetricMatrix& a) const;
+  bool form_tangent(const fem::Vector& q, double dt);
+  void reconstruct();
+
+  const fem::MechanicalSystem& system_;
+  ReducedBasis basis_;
+  fem::DynamicSettings settings_;
+  Eigen::MatrixXd phi_;            // all dofs x k
+  Eigen::MatrixXd phi_free_;       // free dofs x k
+  std::vector<double> weights_;    // per element: the sample's weight, 0 elsewhere
+  fem::Vector origin_correction_;  // Phi^T (f_int - f_int of the sample) at the origin
+  fem::SymmetricMatrix mass_;
+  fem::Vector lumped_mass_;  // row sums of M over the free dofs [kg]
+  Eigen::MatrixXd mass_r_, damping_r_;
+  std::optional<fem::SymmetricMatrix> stiffness0_;  // K0 over the free dofs, for C
+  Eigen::LDLT<Eigen::MatrixXd> tangent_;
+  double tangent_dt_ = 0.0;  // 0: no factor
+  double contraction_ = -1.0;
+  fem::Vector q_, qd_, qdd_;
+  fem::Vector u_, v_;
+  double t_ = 0.0;
+  bool in_equilibrium_ = false;
+};
+
+}  // namespace tongue::reduced
