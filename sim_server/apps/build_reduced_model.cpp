@@ -133,19 +133,6 @@ std::optional<Options> parse_arguments(int argc, char** argv) {
   return o;
 }
 
-// The material as the basis file names it: its type and the scene's parameters.
-std::string material_text(const scene::Scene& s) {
-  std::string text = s.material.type;
-  for (const auto& [name, value] : s.material.parameters) {
-    char v[64];
-    std::snprintf(v, sizeof v, "%.17g", value);
-    text += " " + name + "=" + v;
-  }
-  char density[64];
-  std::snprintf(density, sizeof density, " density=%.17g", s.material.density);
-  return text + density;
-}
-
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
 }
@@ -242,7 +229,7 @@ int run(const Options& o) {
   basis.snapshots = static_cast<int>(set.snapshots.cols());
   basis.runs = static_cast<int>(sequences.size());
   basis.mesh_signature = reduced::mesh_signature(runner.built().solid->mesh());
-  basis.material = material_text(s);
+  basis.material = scene::material_text(s.material);
   basis.scene = s.text;
   basis.sample_elements = sample.elements;
   basis.sample_weights = sample.weights;

@@ -223,6 +223,10 @@ class BatchRun {
       stepping_.add(r.report);
       step_line(s + 1, r.report.time, r.report);
       if (r.ellipticity_loss) material_warning(*r.ellipticity_loss);
+      if (r.reduced_warning) {
+        std::fprintf(stderr, "sim_batch: warning: %s\n", r.reduced_warning->c_str());
+        if (log_) log_->set_attribute("reduced_model_warning", *r.reduced_warning);
+      }
       if (!r.report.converged) {
         failure_ = r.report.message;
         std::fprintf(stderr,

@@ -63,7 +63,6 @@ ReducedIntegrator::ReducedIntegrator(const fem::MechanicalSystem& system, Reduce
     weights_.at(static_cast<std::size_t>(basis_.sample_elements[j])) =
         basis_.sample_weights[static_cast<Eigen::Index>(j)];
   mass_r_ = project(mass_);
-  lumped_mass_ = mass_.multiply(fem::Vector::Ones(dofs.num_free()));
   // The sample's internal force differs from the mesh's by a little everywhere, also at the
   // origin, which is the full model's equilibrium: the difference there is added back, so that
   // the reduced model rests where the full one does.
@@ -87,6 +86,7 @@ Eigen::MatrixXd ReducedIntegrator::project(const fem::SymmetricMatrix& a) const 
 void ReducedIntegrator::reconstruct() {
   u_ = basis_.origin + phi_ * q_;
   v_ = phi_ * qd_;
+  a_ = phi_ * qdd_;
 }
 
 bool ReducedIntegrator::reduced_force(const fem::Vector& q, fem::Vector& f, fem::SymmetricMatrix* K,
@@ -119,9 +119,11 @@ void ReducedIntegrator::initialize(const fem::Vector& u0, const fem::Vector& v0,
   if (!reduced_force(q_, f, nullptr, nullptr))
     throw std::runtime_error("initial state has an inverted element");
   qdd_ = mass_r_.ldlt().solve(-f - damping_r_ * qd_);
+  reconstruct();
   tangent_dt_ = 0.0;
   contraction_ = -1.0;
   in_equilibrium_ = false;
+  last_dt_ = 0.0;
 }
 
 bool ReducedIntegrator::form_tangent(const fem::Vector& q, double dt) {
@@ -148,6 +150,7 @@ fem::StepReport ReducedIntegrator::step(double dt) {
   report.substeps = 0;
   report.converged = advance(dt, report, 0);
   report.time = t_;
+  if (report.converged) last_dt_ = dt;
   in_equilibrium_ = report.converged && report.iterations == 0;
   report.wall_seconds = seconds_since(start);
   return report;
@@ -251,18 +254,38 @@ bool ReducedIntegrator::advance(double dt, fem::StepReport& report, int depth) {
   return advance(0.5 * dt, report, depth + 1) && advance(0.5 * dt, report, depth + 1);
 }
 
-double ReducedIntegrator::full_residual() const {
-  const fem::DofMap& dofs = system_.solid().dofs();
+double ReducedIntegrator::full_model_correction() {
+  if (last_dt_ <= 0.0) return 0.0;  // no step yet: the state is the initial one
+  const fem::SolidModel& solid = system_.solid();
+  const fem::DofMap& dofs = solid.dofs();
+  const fem::NewmarkParameters& p = settings_.newmark;
+  const fem::RayleighDamping& d = settings_.damping;
+  if (!check_solver_ || check_dt_ != last_dt_) {
+    // S = c0 M + c1 C + K0, C = alpha M + beta_R K0: the full step's tangent at the origin.
+    if (!stiffness0_) {
+      stiffness0_.emplace(solid.pattern());
+      fem::Vector f;
+      if (!solid.assemble(basis_.origin, f, &*stiffness0_).ok)
+        return std::numeric_limits<double>::infinity();
+    }
+    const double c0 = 1.0 / (p.beta * last_dt_ * last_dt_), c1 = p.gamma / (p.beta * last_dt_);
+    fem::SymmetricMatrix s(solid.pattern());
+    s.scale_and_add(0.0, c0 + c1 * d.mass_coefficient, mass_);
+    s.scale_and_add(1.0, 1.0 + c1 * d.stiffness_coefficient, *stiffness0_);
+    check_solver_ = std::make_unique<fem::CholmodSolver>(solid.pattern());
+    if (!check_solver_->factorize(s).ok) {
+      check_solver_.reset();
+      return std::numeric_limits<double>::infinity();
+    }
+    check_dt_ = last_dt_;
+  }
   fem::Vector r;
   if (!system_.residual(u_, 1.0, r, nullptr).ok) return std::numeric_limits<double>::infinity();
-  fem::Vector dynamic = dofs.gather_free(r) + mass_.multiply(phi_free_ * qdd_);
-  if (stiffness0_ || settings_.damping.mass_coefficient != 0.0) {
-    const fem::Vector v = phi_free_ * qd_;
-    dynamic += settings_.damping.mass_coefficient * mass_.multiply(v);
-    if (stiffness0_) dynamic += settings_.damping.stiffness_coefficient * stiffness0_->multiply(v);
-  }
-  // Each dof's force imbalance over its share of the mass: the acceleration it lacks.
-  return dynamic.cwiseQuotient(lumped_mass_).lpNorm<Eigen::Infinity>();
+  const fem::Vector v = phi_free_ * qd_;
+  fem::Vector dynamic =
+      dofs.gather_free(r) + mass_.multiply(phi_free_ * qdd_ + d.mass_coefficient * v);
+  if (d.stiffness_coefficient != 0.0) dynamic += d.stiffness_coefficient * stiffness0_->multiply(v);
+  return check_solver_->solve(dynamic).lpNorm<Eigen::Infinity>();
 }
 
 }  // namespace tongue::reduced

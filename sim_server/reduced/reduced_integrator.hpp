@@ -13,15 +13,19 @@
 // origin, so that the origin stays an equilibrium. The modes are zero at the prescribed dofs (every
 // snapshot is), so u keeps the origin's prescribed values.
 #include <Eigen/Cholesky>
+#include <memory>
+#include <optional>
 
 #include "fem/integrator/mechanical_system.hpp"
 #include "fem/integrator/newmark_integrator.hpp"
 #include "fem/integrator/step_report.hpp"
+#include "fem/integrator/time_integrator.hpp"
+#include "fem/solver/cholmod_solver.hpp"
 #include "reduced/reduced_basis_file.hpp"
 
 namespace tongue::reduced {
 
-class ReducedIntegrator {
+class ReducedIntegrator : public fem::TimeIntegrator {
  public:
   // The basis must fit the system's mesh (check_fits). Throws std::invalid_argument when its
   // sizes do not fit or a mode moves a prescribed dof.
@@ -31,26 +35,30 @@ class ReducedIntegrator {
   // The state nearest u0, v0 in the basis (their projections: the modes are orthonormal), the
   // consistent reduced acceleration, K0 for the damping. Throws std::runtime_error when the
   // forces cannot be evaluated there.
-  void initialize(const fem::Vector& u0, const fem::Vector& v0, double t0 = 0.0);
+  void initialize(const fem::Vector& u0, const fem::Vector& v0, double t0 = 0.0) override;
   // Forms and factorizes the reduced tangent of a step of dt at the predictor.
-  void prepare(double dt);
+  void prepare(double dt) override;
   // Advances by dt; cuts and retries on failure like fem::NewmarkIntegrator::step.
-  fem::StepReport step(double dt);
+  fem::StepReport step(double dt) override;
   // As fem::NewmarkIntegrator: the last step needed no correction and nothing moves faster than
   // fem::NewmarkIntegrator::kRestSpeed.
-  bool at_rest() const;
-  fem::StepReport hold(double dt);
+  bool at_rest() const override;
+  fem::StepReport hold(double dt) override;
 
-  // The full model's dynamic residual at the current reduced state, R = M a + C v + f_int - f_ext
-  // over the free dofs with every element, as the acceleration it leaves unexplained,
-  // max_i |R_i| / m_i with m_i the dof's lumped mass [m/s^2]: zero for a state of the full
-  // model, and what the basis cannot represent otherwise. Costs one full residual evaluation.
-  double full_residual() const;
+  // The error indicator: the full model's dynamic residual at the current reduced state,
+  // R = M a + C v + f_int - f_ext over the free dofs with every element, turned into the
+  // correction the full model's Newton method would make from there, S^-1 R with S the last
+  // step's tangent at the origin (c0 M + c1 C + K0), as its largest nodal component [m]: zero
+  // for a state of the full model, and what the basis cannot represent otherwise. Costs one
+  // full residual and one solve (S is factorized at the first call and when dt changes); 0
+  // before the first step.
+  double full_model_correction();
 
   // Full vectors, reconstructed from the reduced state.
-  const fem::Vector& displacement() const { return u_; }
-  const fem::Vector& velocity() const { return v_; }
-  double time() const { return t_; }
+  const fem::Vector& displacement() const override { return u_; }
+  const fem::Vector& velocity() const override { return v_; }
+  const fem::Vector& acceleration() const override { return a_; }
+  double time() const override { return t_; }
   int num_modes() const { return static_cast<int>(phi_.cols()); }
   int num_sampled_elements() const { return static_cast<int>(basis_.sample_elements.size()); }
 
@@ -73,14 +81,15 @@ class ReducedIntegrator {
   std::vector<double> weights_;    // per element: the sample's weight, 0 elsewhere
   fem::Vector origin_correction_;  // Phi^T (f_int - f_int of the sample) at the origin
   fem::SymmetricMatrix mass_;
-  fem::Vector lumped_mass_;  // row sums of M over the free dofs [kg]
   Eigen::MatrixXd mass_r_, damping_r_;
-  std::optional<fem::SymmetricMatrix> stiffness0_;  // K0 over the free dofs, for C
+  std::optional<fem::SymmetricMatrix> stiffness0_;    // K0 over the free dofs, for C and S
+  std::unique_ptr<fem::CholmodSolver> check_solver_;  // S, for full_model_correction
+  double check_dt_ = 0.0, last_dt_ = 0.0;
   Eigen::LDLT<Eigen::MatrixXd> tangent_;
   double tangent_dt_ = 0.0;  // 0: no factor
   double contraction_ = -1.0;
   fem::Vector q_, qd_, qdd_;
-  fem::Vector u_, v_;
+  fem::Vector u_, v_, a_;
   double t_ = 0.0;
   bool in_equilibrium_ = false;
 };

@@ -96,6 +96,12 @@
 //     newmark: {beta: 0.25, gamma: 0.5}
 //     lumped_mass: false
 //     max_cuts: 4                  # a failing step or increment is halved at most this often
+//   model:                         # dynamic only; default: the full finite-element model
+//     reduced: basis.h5            # required: a reduced basis made by build_reduced_model for
+//                                  # this mesh and material, relative to the scene file
+//     check_every: 10              # steps between checks of the full model's residual (0: none)
+//     warn_above: 0.001            # m: warn once when the full model would correct the reduced
+//                                  # state by more than this
 //   solver: {residual_rtol: 1e-6, residual_atol: 1e-9, increment_rtol: 1e-6,
 //            increment_atol: 1e-12, max_iterations: 25, line_search: true,
 //            max_tangent_reuse: 0, reform_ratio: 0.5, quasi_newton_updates: 0,
@@ -238,6 +244,17 @@ struct AnalysisSpec {
   int max_cuts = 4;
 };
 
+// The model a dynamic run steps: the full finite-element model, or a reduced one made from it
+// by build_reduced_model (docs/reduced.md).
+struct ModelSpec {
+  std::string reduced;  // the reduced basis file, resolved; empty: the full model
+  // Steps between evaluations of the full model's residual at the reduced state (0: never),
+  // and the largest nodal correction it calls for above which the run warns [m].
+  int check_every = 10;
+  double warn_above = 1e-3;
+  bool is_reduced() const { return !reduced.empty(); }
+};
+
 struct OutputSpec {
   std::string file;  // empty: no run file unless the command line names one
   int every = 1;
@@ -264,6 +281,7 @@ struct Scene {
   model::ActiveForceLength muscle_force_length;
   ObstaclesSpec obstacles;
   AnalysisSpec analysis;
+  ModelSpec model;
   // The solver block over fem::NewtonSettings' defaults, and the keys it gave: a dynamic
   // analysis takes its own defaults for the keys not given (dynamic_newton_settings in
   // scene_builder.hpp).

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <functional>
 #include <set>
 #include <stdexcept>
@@ -416,6 +417,17 @@ double time_step_length(const AnalysisSpec& analysis, int step) {
   // fresh factorization.
   const double rest = analysis.duration - (count - 1) * analysis.dt;
   return std::abs(rest - analysis.dt) <= 1e-9 * analysis.dt ? analysis.dt : rest;
+}
+
+std::string material_text(const MaterialSpec& material) {
+  std::string text = material.type;
+  char value[64];
+  for (const auto& [name, v] : material.parameters) {
+    std::snprintf(value, sizeof value, "%.17g", v);
+    text += " " + name + "=" + value;
+  }
+  std::snprintf(value, sizeof value, " density=%.17g", material.density);
+  return text + value;
 }
 
 }  // namespace tongue::scene

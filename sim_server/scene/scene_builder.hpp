@@ -39,6 +39,10 @@ struct BuiltScene {
   std::map<long, int> element_index_of_id;     // imported meshes: file element id -> index
 };
 
+// The material as text: its type, the parameters the scene gives and the density (a reduced
+// basis records the material it was made for).
+std::string material_text(const MaterialSpec& material);
+
 // Throws SceneError (scene_reader.hpp) naming the scene file and key path for what only the
 // built mesh reveals: a set that selects no nodes, a node or element id not in the mesh, a
 // "mat_<n>" set the file lacks, a node given two different prescribed displacements in one

@@ -97,7 +97,7 @@ class Parser : private common::YamlReader {
     check_keys(root, "",
                {"mesh", "material", "node_sets", "constraints", "gravity", "loads", "damping",
                 "muscles", "muscle_stiffening", "muscle_force_length", "activations", "obstacles",
-                "contact", "analysis", "solver", "output"});
+                "contact", "analysis", "model", "solver", "output"});
     Scene scene;
     scene.source = source();
     scene.text = file_text();
@@ -134,6 +134,11 @@ class Parser : private common::YamlReader {
       read_contact(n, "contact", scene.obstacles.contact);
     }
     read_analysis(required(root, "", "analysis"), "analysis", scene.analysis);
+    if (const auto n = root["model"]; present(n)) {
+      if (scene.analysis.type != AnalysisType::dynamic)
+        fail("model", "a reduced model needs a dynamic analysis", n);
+      read_model(n, "model", scene.model);
+    }
     if (const auto n = root["solver"]; present(n))
       read_solver(n, "solver", scene.solver, scene.solver_keys, scene.threads);
     if (const auto n = root["output"]; present(n)) read_output(n, "output", scene.output);
@@ -701,6 +706,17 @@ class Parser : private common::YamlReader {
       c.smoothing = positive(v, child_path(path, "smoothing"), "m");
     if (const auto v = n["search_depth"]; present(v))
       c.search_depth = positive(v, child_path(path, "search_depth"), "m");
+  }
+
+  void read_model(const YAML::Node& n, const std::string& path, ModelSpec& m) const {
+    expect_map(n, path);
+    check_keys(n, path, {"reduced", "check_every", "warn_above"});
+    m.reduced =
+        existing_file(required(n, path, "reduced"), child_path(path, "reduced"), "reduced basis");
+    if (const auto c = n["check_every"]; present(c))
+      m.check_every = at_least(c, child_path(path, "check_every"), 0);
+    if (const auto w = n["warn_above"]; present(w))
+      m.warn_above = positive(w, child_path(path, "warn_above"), "m");
   }
 
   void read_output(const YAML::Node& n, const std::string& path, OutputSpec& o) const {

@@ -1,8 +1,11 @@
 #include "scene_run/scene_run.hpp"
 
+#include <cstdio>
 #include <stdexcept>
 #include <utility>
 
+#include "fem/integrator/newmark_integrator.hpp"
+#include "reduced/reduced_integrator.hpp"
 #include "scene_run/scene_run_file.hpp"
 
 namespace tongue::scene_run {
@@ -12,6 +15,11 @@ SceneRun::SceneRun(const scene::Scene& scene, scene::BuiltScene built)
   if (scene_.analysis.type != scene::AnalysisType::dynamic)
     throw std::invalid_argument(scene_.source +
                                 ": a run needs a dynamic analysis (analysis.type: dynamic)");
+  if (scene_.model.is_reduced()) {
+    basis_ = reduced::read_reduced_basis(scene_.model.reduced);
+    reduced::check_fits(*basis_, scene_.model.reduced, built_.solid->mesh(),
+                        scene::material_text(scene_.material));
+  }
   levels_ = fem::Vector::Zero(num_muscles());
   initial_u_ = fem::Vector::Zero(built_.solid->num_dofs());
   u_ = v_ = initial_u_;
@@ -38,11 +46,16 @@ fem::StaticReport SceneRun::start() {
 void SceneRun::restart() {
   levels_ = fem::Vector::Zero(num_muscles());
   if (built_.muscles) built_.muscles->set_activations(levels_);
-  integrator_ = std::make_unique<fem::NewmarkIntegrator>(*built_.system, built_.dynamic_settings);
+  if (basis_)
+    integrator_ = std::make_unique<reduced::ReducedIntegrator>(*built_.system, *basis_,
+                                                               built_.dynamic_settings);
+  else
+    integrator_ = std::make_unique<fem::NewmarkIntegrator>(*built_.system, built_.dynamic_settings);
   integrator_->initialize(initial_u_, fem::Vector::Zero(initial_u_.size()), 0.0);
   integrator_->prepare(scene::time_step_length(scene_.analysis, 0));
   accept();
   step_ = 0;
+  reduced_warned_ = false;
 }
 
 void SceneRun::accept() {
@@ -83,6 +96,21 @@ StepResult SceneRun::step(double dt, const fem::Vector& levels) {
   ++step_;
   result.muscles = frame_;
   result.ellipticity_loss = ellipticity_.check(u_, step_, time_);
+  const scene::ModelSpec& model = scene_.model;
+  if (basis_ && model.check_every > 0 && step_ % model.check_every == 0) {
+    const double c = static_cast<reduced::ReducedIntegrator&>(*integrator_).full_model_correction();
+    result.reduced_correction = c;
+    if (!(c <= model.warn_above) && !reduced_warned_) {
+      reduced_warned_ = true;
+      char text[256];
+      std::snprintf(text, sizeof text,
+                    "at t = %.6g s (step %lld) the full model would move the reduced model's "
+                    "state by %.3g mm, more than model.warn_above (%.3g mm): the run has left "
+                    "what the basis was trained on",
+                    time_, static_cast<long long>(step_), 1e3 * c, 1e3 * model.warn_above);
+      result.reduced_warning = text;
+    }
+  }
   return result;
 }
 

@@ -13,13 +13,18 @@
 //     the first step is as quick as the later ones.
 //  3. step(dt, levels): the muscles act from the first step on, with the levels given for it.
 // Activations enter only as the argument of step(): nothing else sets them.
+// A scene with `model: {reduced: FILE}` is stepped by the reduced model of that basis
+// (reduced::ReducedIntegrator) from the same initial state, projected onto the basis; every
+// model.check_every steps the full model's residual at the reduced state is evaluated and
+// reported with the step.
 #include <cstdint>
 #include <memory>
 #include <optional>
 #include <string>
 
-#include "fem/integrator/newmark_integrator.hpp"
 #include "fem/integrator/static_solver.hpp"
+#include "fem/integrator/time_integrator.hpp"
+#include "reduced/reduced_basis_file.hpp"
 #include "run_file/run_file_writer.hpp"
 #include "scene/scene.hpp"
 #include "scene/scene_builder.hpp"
@@ -40,11 +45,19 @@ struct StepResult {
   // so it comes one step late: the result of step k + 1 (converged or not) reports a loss in
   // the state of step k, and finish_checks() one in the last state. The finding names its step.
   std::optional<EllipticityFinding> ellipticity_loss;
+  // With a reduced model, on the steps it is checked: the largest nodal correction the full
+  // model would make to the new state [m] (reduced::ReducedIntegrator::full_model_correction);
+  // and, the first time in a run that it exceeds the scene's model.warn_above, a warning that
+  // says so (when and by how much).
+  std::optional<double> reduced_correction;
+  std::optional<std::string> reduced_warning;
 };
 
 class SceneRun {
  public:
-  // Throws std::invalid_argument naming the scene file when its analysis is not dynamic.
+  // Throws std::invalid_argument naming the scene file when its analysis is not dynamic, and
+  // naming the basis file when the scene's reduced model was made for another mesh or
+  // material (std::runtime_error when it cannot be read).
   SceneRun(const scene::Scene& scene, scene::BuiltScene built);
   ~SceneRun();
   SceneRun(const SceneRun&) = delete;
@@ -83,9 +96,11 @@ class SceneRun {
   fem::Vector positions() const;                          // m, rest positions + displacement
   const fem::Vector& levels() const { return levels_; }   // [1], of the last step (0 at step 0)
   const fem::Vector& initial_displacement() const { return initial_u_; }  // m, of step 0
-  // The integrator, read-only, for diagnostics that look inside a step (its acceleration, its
-  // Newton solver's settings); valid after start().
-  const fem::NewmarkIntegrator& integrator() const { return *integrator_; }
+  // The integrator, read-only, for diagnostics that look inside a step (its acceleration);
+  // valid after start().
+  const fem::TimeIntegrator& integrator() const { return *integrator_; }
+  // The reduced model's basis; null for the full model.
+  const reduced::ReducedBasis* reduced_basis() const { return basis_ ? &*basis_ : nullptr; }
   // The muscles' frame at the current state (what step() returns; at step 0: all activations 0),
   // computed once per accepted state.
   const run_file::MuscleFrame& muscle_frame() const { return frame_; }
@@ -93,7 +108,8 @@ class SceneRun {
  private:
   const scene::Scene& scene_;
   scene::BuiltScene built_;
-  std::unique_ptr<fem::NewmarkIntegrator> integrator_;
+  std::optional<reduced::ReducedBasis> basis_;
+  std::unique_ptr<fem::TimeIntegrator> integrator_;
   EllipticityWatch ellipticity_;
   void accept();  // the integrator's state becomes the last accepted one
 
@@ -104,6 +120,7 @@ class SceneRun {
   fem::Vector levels_;
   run_file::MuscleFrame frame_;  // of u_, v_ and levels_
   std::int64_t step_ = 0;
+  bool reduced_warned_ = false;  // in this run (since the last restart)
 };
 
 }  // namespace tongue::scene_run

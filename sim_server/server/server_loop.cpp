@@ -379,6 +379,10 @@ void ServerLoop::take_step(const fem::Vector& levels) {
   mark = timing_.add(StepTiming::Part::physics, mark);
   timing_.add_solver(last_.report);
   if (last_.ellipticity_loss) warn_material(*last_.ellipticity_loss);
+  if (last_.reduced_warning) {
+    std::fprintf(stderr, "sim_server: warning: %s\n", last_.reduced_warning->c_str());
+    if (log_) log_->set_attribute("reduced_model_warning", *last_.reduced_warning);
+  }
   if (!last_.report.converged) {
     failure_ = "step " + std::to_string(from + 1) + " failed to converge: " + last_.report.message;
     std::fprintf(stderr, "sim_server: %s; stopping at the last accepted state\n", failure_.c_str());

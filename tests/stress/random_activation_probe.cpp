@@ -149,7 +149,7 @@ class RecordingStep : public fem::NonlinearProblem {
  public:
   RecordingStep(const fem::MechanicalSystem& system, const fem::SymmetricMatrix& mass,
                 const fem::SymmetricMatrix& damping, const fem::NewmarkParameters& p, double dt,
-                const fem::NewmarkIntegrator& state)
+                const fem::TimeIntegrator& state)
       : system_(system),
         dofs_(system.solid().dofs()),
         mass_(mass),
@@ -201,7 +201,7 @@ class RecordingStep : public fem::NonlinearProblem {
 };
 
 // Solves one step again on RecordingStep and prints each iterate.
-void dissect(const Probe& probe, const fem::NewmarkIntegrator& integrator,
+void dissect(const Probe& probe, const fem::TimeIntegrator& integrator,
              const fem::SymmetricMatrix& mass, const fem::SymmetricMatrix& damping, double dt,
              int max_iterations) {
   const auto& settings = probe.built.dynamic_settings;
@@ -270,7 +270,7 @@ int run(const Options& o) {
     std::fprintf(stderr, "settling failed\n");
     return 1;
   }
-  const fem::NewmarkIntegrator& integrator = run.integrator();
+  const fem::TimeIntegrator& integrator = run.integrator();
   // Replicas of the integrator's mass and damping (newmark_integrator.cpp) for dissect().
   const fem::SymmetricMatrix mass = built.solid->mass_matrix(built.dynamic_settings.lumped_mass);
   fem::SymmetricMatrix damping(built.solid->pattern());

@@ -15,6 +15,7 @@
 #include "fem/assembly/node_block_matrix.hpp"
 #include "fem/integrator/mechanical_system.hpp"
 #include "fem/integrator/step_report.hpp"
+#include "fem/integrator/time_integrator.hpp"
 #include "fem/solver/newton_solver.hpp"
 
 namespace tongue::fem {
@@ -38,16 +39,16 @@ struct DynamicSettings {
   NewtonSettings newton;
 };
 
-class NewmarkIntegrator {
+class NewmarkIntegrator : public TimeIntegrator {
  public:
   NewmarkIntegrator(const MechanicalSystem& system, DynamicSettings settings);
-  ~NewmarkIntegrator();
+  ~NewmarkIntegrator() override;
 
   // Sets u, v (full vectors; prescribed dofs take their prescribed values and zero velocity)
   // and the consistent initial acceleration from M a = f_ext - f_int - C v; K0 for the damping
   // is formed here. Throws std::runtime_error when f_int cannot be evaluated at u. A first
   // step() without it starts from rest at u = 0.
-  void initialize(const Vector& u0, const Vector& v0, double t0 = 0.0);
+  void initialize(const Vector& u0, const Vector& v0, double t0 = 0.0) override;
 
   // Forms the constant matrices of a step of dt and factorizes that step's tangent at its
   // predictor, so that the first step() of dt, which starts with them, pays for neither: a
@@ -56,11 +57,11 @@ class NewmarkIntegrator {
   // whose activations differ starts from a slightly stale factor, as any later step whose
   // activations change does. Call after initialize(); a failure only leaves the work to the
   // first step.
-  void prepare(double dt);
+  void prepare(double dt) override;
 
   // Advances by dt; cuts and retries on failure. When the report says !converged the state is
   // left at the last accepted substep.
-  StepReport step(double dt);
+  StepReport step(double dt) override;
 
   // At rest: the last step was in equilibrium from its start (Newton accepted its predictor
   // without iterating: the residual, and with it M a, within the residual test) and no free node
@@ -69,14 +70,14 @@ class NewmarkIntegrator {
   // the time advancing, without evaluating anything. Whether the loads are unchanged is the
   // caller's knowledge (e.g. the same muscle activations); any step() ends the rest.
   static constexpr double kRestSpeed = 1e-6;  // [m/s]
-  bool at_rest() const;
+  bool at_rest() const override;
   // Throws std::logic_error when !at_rest().
-  StepReport hold(double dt);
+  StepReport hold(double dt) override;
 
-  const Vector& displacement() const { return u_; }
-  const Vector& velocity() const { return v_; }
-  const Vector& acceleration() const { return a_; }
-  double time() const { return t_; }
+  const Vector& displacement() const override { return u_; }
+  const Vector& velocity() const override { return v_; }
+  const Vector& acceleration() const override { return a_; }
+  double time() const override { return t_; }
   const DynamicSettings& settings() const { return settings_; }
   NewtonSolver& newton() { return newton_; }
 

@@ -10,7 +10,7 @@ struct StepTotals {
   int steps = 0, iterations = 0, cuts = 0, factorizations = 0, residuals = 0;
   double assembly = 0.0, factorization = 0.0, solve = 0.0;  // s
   double wall = 0.0;                                        // s
-  double residual = 0.0;  // the last step's final residual [N]
+  double residual = 0.0;                                    // the last step's final residual [N]
 
   void add(const StepReport& r) {
     ++steps;

@@ -1,0 +1,159 @@
+// The reduced model against the full one on runs it was not trained on (docs/reduced.md):
+// held-out activation sequences (reduced::training_sequences' shapes with levels from another
+// seed: each muscle group stepped and ramped, pairs of groups, random mixes), each run by the
+// scene's full model and by its reduced model (the basis given), both through SceneRun from the
+// settled state. Per run and in all: the nodal error of the reduced model against the full one
+// (RMS over nodes and steps, largest), each model's stepping time and real-time factor, Newton
+// iterations per step, and the full model's residual at the reduced state (the error indicator,
+// checked every step here) at its largest.
+//
+// Usage: reduced_benchmark SCENE BASIS [--seed N] [--pairs N] [--mixes N] [--duration S]
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "reduced/training_sequences.hpp"
+#include "scene/scene_builder.hpp"
+#include "scene/scene_reader.hpp"
+#include "scene_run/scene_run.hpp"
+
+namespace {
+
+using namespace tongue;
+using Clock = std::chrono::steady_clock;
+
+struct Totals {
+  double squared_error = 0.0, max_error = 0.0, max_indicator = 0.0;
+  double full_s = 0.0, reduced_s = 0.0, simulated_s = 0.0;
+  long nodes_steps = 0, steps = 0, full_iterations = 0, reduced_iterations = 0, failures = 0;
+};
+
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+int run(int argc, char** argv) {
+  if (argc < 3) {
+    std::fprintf(stderr,
+                 "usage: reduced_benchmark SCENE BASIS [--seed N] [--pairs N] [--mixes N] "
+                 "[--duration S]\n");
+    return 1;
+  }
+  reduced::TrainingOptions held_out;
+  held_out.seed = 1001;  // the training's default is 1: other levels, other mixes
+  held_out.pairs = 4;
+  held_out.mixes = 6;
+  for (int i = 3; i + 1 < argc; i += 2) {
+    const std::string a = argv[i];
+    const double v = std::atof(argv[i + 1]);
+    if (a == "--seed")
+      held_out.seed = static_cast<std::uint32_t>(v);
+    else if (a == "--pairs")
+      held_out.pairs = static_cast<int>(v);
+    else if (a == "--mixes")
+      held_out.mixes = static_cast<int>(v);
+    else if (a == "--duration")
+      held_out.duration = v;
+    else {
+      std::fprintf(stderr, "reduced_benchmark: unknown option %s\n", a.c_str());
+      return 1;
+    }
+  }
+  const scene::Scene full_scene = scene::read_scene(argv[1]);
+  scene::Scene reduced_scene = full_scene;
+  reduced_scene.model.reduced = argv[2];
+  reduced_scene.model.check_every = 1;
+  scene_run::SceneRun full(full_scene, scene::build_scene(full_scene));
+  scene_run::SceneRun reduced(reduced_scene, scene::build_scene(reduced_scene));
+  if (!full.start().converged || !reduced.start().converged) {
+    std::fprintf(stderr, "reduced_benchmark: settling failed\n");
+    return 1;
+  }
+  std::vector<std::string> names;
+  for (const auto& m : full.built().muscles->muscles()) names.push_back(m.name);
+  const double dt = full_scene.analysis.dt;
+  const int steps = static_cast<int>(std::ceil(held_out.duration / dt - 1e-9));
+  const reduced::ReducedBasis& basis = *reduced.reduced_basis();
+  std::printf(
+      "%s, basis %s: %d modes, %zu of %d elements sampled; held-out seed %u, dt %g ms, "
+      "%d steps a run\n",
+      full_scene.source.c_str(), argv[2], static_cast<int>(basis.modes.cols()),
+      basis.sample_elements.size(), full.built().solid->mesh().num_elements(), held_out.seed,
+      dt * 1e3, steps);
+  std::printf("%-16s %8s %8s %9s %9s %7s %7s %12s\n", "run", "RMS[mm]", "max[mm]", "full[ms]",
+              "red.[ms]", "it/st", "red.it", "indic[mm]");
+  Totals all;
+  const int nodes = full.built().solid->mesh().num_nodes();
+  for (const reduced::TrainingSequence& seq : reduced::training_sequences(names, held_out)) {
+    full.restart();
+    reduced.restart();
+    Totals run;
+    for (int k = 0; k < steps; ++k) {
+      const fem::Vector levels = seq.at((k + 1) * dt).cwiseMax(0.0).cwiseMin(1.0);
+      auto t = Clock::now();
+      const scene_run::StepResult f = full.step(dt, levels);
+      run.full_s += seconds_since(t);
+      t = Clock::now();
+      const scene_run::StepResult r = reduced.step(dt, levels);
+      run.reduced_s += seconds_since(t);
+      if (!f.report.converged || !r.report.converged) {
+        ++run.failures;
+        break;
+      }
+      run.full_iterations += f.report.iterations;
+      run.reduced_iterations += r.report.iterations;
+      const fem::Vector d = reduced.displacement() - full.displacement();
+      for (int a = 0; a < nodes; ++a) {
+        const double e2 = d.segment<3>(3 * a).squaredNorm();
+        run.squared_error += e2;
+        run.max_error = std::max(run.max_error, std::sqrt(e2));
+      }
+      run.nodes_steps += nodes;
+      ++run.steps;
+      run.simulated_s += dt;
+      if (r.reduced_correction)
+        run.max_indicator = std::max(run.max_indicator, *r.reduced_correction);
+    }
+    std::printf("%-16s %8.3f %8.3f %9.1f %9.1f %7.2f %7.2f %12.3f%s\n", seq.name.c_str(),
+                1e3 * std::sqrt(run.squared_error / std::max(1L, run.nodes_steps)),
+                1e3 * run.max_error, 1e3 * run.full_s, 1e3 * run.reduced_s,
+                double(run.full_iterations) / std::max(1L, run.steps),
+                double(run.reduced_iterations) / std::max(1L, run.steps), 1e3 * run.max_indicator,
+                run.failures ? "  (a step failed)" : "");
+    all.squared_error += run.squared_error;
+    all.max_error = std::max(all.max_error, run.max_error);
+    all.max_indicator = std::max(all.max_indicator, run.max_indicator);
+    all.full_s += run.full_s;
+    all.reduced_s += run.reduced_s;
+    all.simulated_s += run.simulated_s;
+    all.nodes_steps += run.nodes_steps;
+    all.steps += run.steps;
+    all.full_iterations += run.full_iterations;
+    all.reduced_iterations += run.reduced_iterations;
+    all.failures += run.failures;
+  }
+  std::printf(
+      "all: RMS %.3f mm, max %.3f mm; full model RTF %.2f (%.2f it/step), reduced RTF %.2f "
+      "(%.2f it/step, its check of the full residual every step included), %ld failed runs; "
+      "largest indicator %.3f mm\n",
+      1e3 * std::sqrt(all.squared_error / std::max(1L, all.nodes_steps)), 1e3 * all.max_error,
+      all.simulated_s / all.full_s, double(all.full_iterations) / std::max(1L, all.steps),
+      all.simulated_s / all.reduced_s, double(all.reduced_iterations) / std::max(1L, all.steps),
+      all.failures, 1e3 * all.max_indicator);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "reduced_benchmark: error: %s\n", e.what());
+    return 1;
+  }
+}
