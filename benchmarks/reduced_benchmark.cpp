@@ -1,6 +1,8 @@
-// The reduced model against the full one on runs it was not trained on (docs/reduced.md):
-// held-out activation sequences (reduced::training_sequences' shapes with levels from another
-// seed: each muscle group stepped and ramped, pairs of groups, random mixes), each run by the
+// The reduced model against the full one on runs it was not trained on (docs/reduced.md): the
+// paper's experiments as forces (SG 3 N, GGp 4 N, SL 1 N, each rising over 30 ms and held) and
+// every muscle at full force, then held-out activation sequences (reduced::training_sequences'
+// shapes with levels from another seed: each muscle group stepped and ramped, pairs of groups,
+// random mixes), each run by the
 // scene's full model and by its reduced model (the basis given), both through SceneRun from the
 // settled state. Per run and in all: the nodal error of the reduced model against the full one
 // (RMS over nodes and steps, largest), each model's stepping time and real-time factor, Newton
@@ -34,6 +36,38 @@ struct Totals {
 
 double seconds_since(Clock::time_point t) {
   return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+// A group's total force [N] (both sides) as every muscle of the group at the same level, rising
+// over 30 ms and held: the paper's experiments. Level 1 for every muscle: all at full force.
+std::vector<reduced::TrainingSequence> experiments(const scene_run::SceneRun& run,
+                                                   double duration) {
+  const auto& muscles = run.built().muscles->muscles();
+  const int n = static_cast<int>(muscles.size());
+  std::vector<reduced::TrainingSequence> out;
+  const auto held = [&](const std::string& name, const fem::Vector& levels) {
+    reduced::TrainingSequence s;
+    s.name = name;
+    s.times = {0.0, 0.03, duration};
+    s.levels = {fem::Vector::Zero(n), levels, levels};
+    s.duration = duration;
+    out.push_back(s);
+  };
+  for (const auto& [group, force] :
+       std::vector<std::pair<std::string, double>>{{"SG", 3.0}, {"GGp", 4.0}, {"SL", 1.0}}) {
+    double total = 0.0;
+    for (const auto& m : muscles)
+      if (m.name == group || m.name.rfind(group + "_", 0) == 0) total += m.max_force;
+    fem::Vector levels = fem::Vector::Zero(n);
+    for (int m = 0; m < n; ++m)
+      if (muscles[m].name == group || muscles[m].name.rfind(group + "_", 0) == 0)
+        levels[m] = std::min(1.0, force / total);
+    char name[32];
+    std::snprintf(name, sizeof name, "%s %g N", group.c_str(), force);
+    held(name, levels);
+  }
+  held("all at full", fem::Vector::Ones(n));
+  return out;
 }
 
 int run(int argc, char** argv) {
@@ -88,7 +122,10 @@ int run(int argc, char** argv) {
               "red.[ms]", "it/st", "red.it", "indic[mm]");
   Totals all;
   const int nodes = full.built().solid->mesh().num_nodes();
-  for (const reduced::TrainingSequence& seq : reduced::training_sequences(names, held_out)) {
+  std::vector<reduced::TrainingSequence> sequences = experiments(full, held_out.duration);
+  for (reduced::TrainingSequence& seq : reduced::training_sequences(names, held_out))
+    sequences.push_back(std::move(seq));
+  for (const reduced::TrainingSequence& seq : sequences) {
     full.restart();
     reduced.restart();
     Totals run;
