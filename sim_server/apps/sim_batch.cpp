@@ -237,7 +237,9 @@ class BatchRun {
       simulated_ = run.time();
       track(run.displacement());
       if ((s + 1) % every == 0 || s + 1 == count) {
-        write_frame(run.time(), run.displacement(), r.muscles, since_frame.figures());
+        run_file::SolverFigures figures = since_frame.figures();
+        figures.reduced_correction = run.reduced_correction();
+        write_frame(run.time(), run.displacement(), r.muscles, figures);
         since_frame = Tally{};
       }
     }

@@ -46,7 +46,8 @@ bool state_layout(WireReader& in, StateCounts& c, std::string& reason) {
          in.fixed("contact_forces", std::int64_t{kDouble} * c.contact_forces, reason) &&
          in.count("num_obstacle_forces", kDouble, c.obstacle_forces, reason) &&
          in.fixed("obstacle_forces", std::int64_t{kDouble} * c.obstacle_forces, reason) &&
-         in.fixed("max_penetration", kDouble, reason) && in.at_end(reason);
+         in.fixed("max_penetration, reduced_model_correction", 2 * kDouble, reason) &&
+         in.at_end(reason);
 }
 
 // The layout of lcmt_tongue_model after the fingerprint (lcmtypes/lcmt_tongue_model.lcm).

@@ -9,6 +9,8 @@
 //   /solver/residual    [T]          double  N, final residual norm of the frame's step
 //   /solver/wall_time   [T]          double  s, wall-clock time since the previous frame
 //   /solver/cuts        [T]          int32   step halvings since the previous frame
+//   /solver/reduced_correction [T]   double  m, a reduced model's error indicator at its last
+//                                            check (0 for the full model)
 // (When every step is logged, "since the previous frame" is simply "of the step".)
 //   /mesh/node_sets/<name>     [n]   int32   0-based node indices, one dataset per node set
 //   /mesh/element_sets/<name>  [e]   int32   0-based element indices, one per element set
@@ -52,6 +54,7 @@ inline constexpr const char* kIterations = "/solver/iterations";
 inline constexpr const char* kResidual = "/solver/residual";
 inline constexpr const char* kWallTime = "/solver/wall_time";
 inline constexpr const char* kCuts = "/solver/cuts";
+inline constexpr const char* kReducedCorrection = "/solver/reduced_correction";
 
 inline constexpr const char* kMesh = "/mesh";
 inline constexpr const char* kNodeSets = "/mesh/node_sets";

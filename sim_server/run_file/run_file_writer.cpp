@@ -26,7 +26,7 @@ double now_seconds() {
 
 // The datasets that grow by one frame per append.
 struct FrameSeries {
-  Id time, positions, iterations, residual, wall_time, cuts;
+  Id time, positions, iterations, residual, wall_time, cuts, reduced_correction;
 };
 struct MuscleSeries {
   Id activations, length, velocity;
@@ -252,6 +252,10 @@ FrameSeries create_frame_series(const Writer& w, hid_t file, hsize_t num_nodes,
                          "wall-clock time since the previous frame");
   s.cuts = w.series(file, L::kCuts, H5T_STD_I32LE, {}, scalar_chunk, z, "1",
                     "step halvings since the previous frame");
+  s.reduced_correction =
+      w.series(file, L::kReducedCorrection, H5T_IEEE_F64LE, {}, scalar_chunk, z, "m",
+               "a reduced model's error indicator at its last check: the largest nodal "
+               "correction the full model would make to the reduced state (0 for the full model)");
   return s;
 }
 
@@ -457,6 +461,8 @@ void RunFileWriter::append(double time, const Eigen::VectorXd& positions,
   w.append(h_->frames.residual.get(), frame, H5T_NATIVE_DOUBLE, &figures.residual, L::kResidual);
   w.append(h_->frames.wall_time.get(), frame, H5T_NATIVE_DOUBLE, &figures.wall_time, L::kWallTime);
   w.append(h_->frames.cuts.get(), frame, H5T_NATIVE_INT, &figures.cuts, L::kCuts);
+  w.append(h_->frames.reduced_correction.get(), frame, H5T_NATIVE_DOUBLE,
+           &figures.reduced_correction, L::kReducedCorrection);
   if (num_muscles_ > 0) {
     w.append(h_->muscles.activations.get(), frame, H5T_NATIVE_DOUBLE, muscles.activations.data(),
              L::kActivations);

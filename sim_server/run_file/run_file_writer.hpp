@@ -66,6 +66,8 @@ struct SolverFigures {
   double residual = 0.0;   // N
   double wall_time = 0.0;  // s
   int cuts = 0;
+  // A reduced model's error indicator at its last check [m]; 0 for the full model.
+  double reduced_correction = 0.0;
 };
 
 struct RunFileOptions {

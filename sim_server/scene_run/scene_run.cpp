@@ -56,6 +56,7 @@ void SceneRun::restart() {
   accept();
   step_ = 0;
   reduced_warned_ = false;
+  reduced_correction_ = 0.0;
 }
 
 void SceneRun::accept() {
@@ -99,7 +100,7 @@ StepResult SceneRun::step(double dt, const fem::Vector& levels) {
   const scene::ModelSpec& model = scene_.model;
   if (basis_ && model.check_every > 0 && step_ % model.check_every == 0) {
     const double c = static_cast<reduced::ReducedIntegrator&>(*integrator_).full_model_correction();
-    result.reduced_correction = c;
+    result.reduced_correction = reduced_correction_ = c;
     if (!(c <= model.warn_above) && !reduced_warned_) {
       reduced_warned_ = true;
       char text[256];

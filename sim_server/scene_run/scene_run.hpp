@@ -99,6 +99,9 @@ class SceneRun {
   // The integrator, read-only, for diagnostics that look inside a step (its acceleration);
   // valid after start().
   const fem::TimeIntegrator& integrator() const { return *integrator_; }
+  // The reduced model's error indicator at its last check [m] (StepResult::reduced_correction);
+  // 0 for the full model and before the first check of a run.
+  double reduced_correction() const { return reduced_correction_; }
   // The reduced model's basis; null for the full model.
   const reduced::ReducedBasis* reduced_basis() const { return basis_ ? &*basis_ : nullptr; }
   // The muscles' frame at the current state (what step() returns; at step 0: all activations 0),
@@ -121,6 +124,7 @@ class SceneRun {
   run_file::MuscleFrame frame_;  // of u_, v_ and levels_
   std::int64_t step_ = 0;
   bool reduced_warned_ = false;  // in this run (since the last restart)
+  double reduced_correction_ = 0.0;
 };
 
 }  // namespace tongue::scene_run

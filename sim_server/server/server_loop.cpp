@@ -439,7 +439,8 @@ void ServerLoop::log_frame() {
   if (!log_) return;
   const fem::StepReport& r = last_.report;
   positions_.noalias() = run_.built().solid->rest_positions() + run_.displacement();
-  log_->append(run_.time(), positions_, {r.iterations, r.final_residual, r.wall_seconds, r.cuts},
+  log_->append(run_.time(), positions_,
+               {r.iterations, r.final_residual, r.wall_seconds, r.cuts, run_.reduced_correction()},
                last_.muscles, scene_run::scene_contact_frame(run_.built(), contact()));
 }
 

@@ -94,6 +94,7 @@ void fill_state_message(tongue_lcm::lcmt_tongue_state& msg, const scene_run::Sce
     for (int i = 0; i < 3; ++i) msg.obstacle_forces[3 * o + i] = contact.obstacle_force[o][i];
   msg.num_obstacle_forces = static_cast<std::int32_t>(msg.obstacle_forces.size());
   msg.max_penetration = contact.max_penetration;
+  msg.reduced_model_correction = run.reduced_correction();
 }
 
 }  // namespace tongue::server

@@ -13,6 +13,9 @@
 #include <string>
 #include <vector>
 
+#include "scene/scene_reader.hpp"
+#include "support/box_scenes.hpp"
+#include "support/reduced_box.hpp"
 #include "support/run_command.hpp"
 #include "support/run_file.hpp"
 #include "support/temp_dir_test.hpp"
@@ -202,6 +205,44 @@ TEST_F(SimBatch, LossOfEllipticityIsReported) {
   const RunResult exponential = run(quoted(write_scene(stretched_cube("exponential"))));
   EXPECT_EQ(exponential.exit_code, 0) << exponential.out << exponential.err;
   EXPECT_EQ(exponential.err.find("elliptic"), std::string::npos) << exponential.err;
+}
+
+TEST_F(SimBatch, AReducedModelRunsAndReportsItsIndicator) {
+  // The test box with its flexor, stepped to 0.6 for 20 ms, run by a reduced model of itself
+  // checked every 2 steps: the run file holds the indicator at each frame (0 until the first
+  // check), and a threshold below it is warned once, on stderr and in the run file.
+  const std::string body =
+      std::string(testing::kBoxScene) + "activations:\n  - {muscles: [flexor], level: 0.6}\n";
+  const fs::path basis = dir_ / "basis.h5";
+  testing::write_reduced_basis_of(scene::parse_scene(body, "", "box.yaml"), 40, basis.string());
+  const fs::path h5 = dir_ / "reduced.h5";
+  RunResult r =
+      run(quoted(write_scene(body + "model: {reduced: " + quoted(basis) + ", check_every: 2}\n")) +
+          " --output " + quoted(h5));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_EQ(r.err.find("reduced model"), std::string::npos) << r.err;
+  {
+    const RunFile f(h5);
+    ASSERT_TRUE(f.ok());
+    const std::vector<double> c = f.doubles("/solver/reduced_correction");
+    ASSERT_EQ(c.size(), f.doubles("/time").size());
+    ASSERT_GE(c.size(), 3u);
+    EXPECT_EQ(c[0], 0.0);  // the initial state: not checked
+    EXPECT_GT(*std::max_element(c.begin(), c.end()), 0.0);
+    EXPECT_LT(*std::max_element(c.begin(), c.end()), 1e-4);  // m: far below the 1 mm default
+    EXPECT_EQ(f.string_attribute("/", "reduced_model_warning"), "<missing>");
+  }
+  r = run(quoted(write_scene(body + "model: {reduced: " + quoted(basis) +
+                             ", check_every: 2, warn_above: 1.0e-15}\n")) +
+          " --output " + quoted(h5));
+  ASSERT_EQ(r.exit_code, 0) << r.out << r.err;
+  EXPECT_NE(r.err.find("warning: at t = 0.004 s (step 2) the full model would move the reduced "
+                       "model's state by"),
+            std::string::npos)
+      << r.err;
+  const RunFile f(h5);
+  EXPECT_NE(f.string_attribute("/", "reduced_model_warning").find("model.warn_above"),
+            std::string::npos);
 }
 
 TEST_F(SimBatch, BadSceneExitsNonZeroNamingTheKeyPath) {

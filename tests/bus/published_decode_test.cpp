@@ -43,11 +43,13 @@ lcmt_tongue_state a_state() {
   s.num_obstacle_forces = 3;
   s.obstacle_forces = {0.0, 0.2, 0.0};
   s.max_penetration = 1e-5;
+  s.reduced_model_correction = 2e-4;
   return s;
 }
 
-// Bytes after a_state()'s status: rejected_messages, overruns, then the contact fields.
-constexpr std::size_t kStateTail = 8 + 8 + (4 + 4 + 4) + (4 + 3 * 8) + (4 + 3 * 8) + 8;
+// Bytes after a_state()'s status: rejected_messages, overruns, the contact fields, then the
+// reduced model's correction.
+constexpr std::size_t kStateTail = 8 + 8 + (4 + 4 + 4) + (4 + 3 * 8) + (4 + 3 * 8) + 8 + 8;
 
 lcmt_tongue_model a_model() {
   lcmt_tongue_model m{};
@@ -139,8 +141,8 @@ TEST(DecodeState, BadStatusLengthsFail) {
 
 TEST(DecodeState, ContactCountsThatDoNotMatchFail) {
   const auto whole = encoded(a_state());
-  // num_contact_forces: 4 + 3 * 8 + 4 + 3 * 8 + 8 bytes before the end.
-  const std::size_t contact_forces = whole.size() - (4 + 3 * 8) - (4 + 3 * 8) - 8;
+  // num_contact_forces: 4 + 3 * 8 + 4 + 3 * 8 + 8 + 8 bytes before the end.
+  const std::size_t contact_forces = whole.size() - (4 + 3 * 8) - (4 + 3 * 8) - 8 - 8;
   auto bytes = whole;
   put_int32(bytes, contact_forces, 0);  // 3 * num_contacts expected; the rest no longer fits
   std::string reason;

@@ -8,14 +8,11 @@
 #include <stdexcept>
 #include <string>
 
-#include "reduced/element_reduced_forces.hpp"
-#include "reduced/element_sampling.hpp"
-#include "reduced/pod_basis.hpp"
-#include "reduced/reduced_basis_file.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_reader.hpp"
 #include "scene_run/scene_run.hpp"
 #include "support/box_scenes.hpp"
+#include "support/reduced_box.hpp"
 #include "support/temp_dir_test.hpp"
 
 namespace tongue::scene_run {
@@ -38,32 +35,10 @@ fem::Vector level(int k, double on) {
 
 class ReducedRun : public testing::TempDirTest {
  protected:
-  // A basis of the box's full model under the flexor stepped to 1 and released, its elements
-  // sampled within 1 %.
+  // A basis of the box's full model under the flexor stepped to 1 and released.
   std::string train() {
-    const scene::Scene scene = box();
-    SceneRun full(scene, scene::build_scene(scene));
-    EXPECT_TRUE(full.start().converged);
-    const fem::Vector origin = full.displacement();
-    Eigen::MatrixXd snapshots(origin.size(), kSteps);
-    for (int k = 0; k < kSteps; ++k) {
-      EXPECT_TRUE(full.step(kDt, level(k, 1.0)).report.converged);
-      snapshots.col(k) = full.displacement() - origin;
-    }
-    const reduced::PodBasis pod = reduced::pod_basis(snapshots, 0.9999999);
-    const reduced::ElementSample sample = reduced::sample_elements(
-        reduced::element_reduced_forces(*full.built().solid, origin, pod.modes, snapshots),
-        static_cast<int>(pod.modes.cols()), 0.01);
-    reduced::ReducedBasis basis;
-    basis.origin = origin;
-    basis.modes = pod.modes;
-    basis.singular_values = pod.singular_values;
-    basis.sample_elements = sample.elements;
-    basis.sample_weights = sample.weights;
-    basis.mesh_signature = reduced::mesh_signature(full.built().solid->mesh());
-    basis.material = scene::material_text(scene.material);
     const std::string path = (dir_ / "basis.h5").string();
-    reduced::write_reduced_basis(path, basis);
+    testing::write_reduced_basis_of(box(), kSteps, path);
     return path;
   }
 };

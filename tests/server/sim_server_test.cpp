@@ -18,6 +18,8 @@
 
 #include "bus/channels.hpp"
 #include "bus/messages.hpp"
+#include "scene/scene_reader.hpp"
+#include "support/reduced_box.hpp"
 #include "support/run_command.hpp"
 #include "support/run_file.hpp"
 #include "support/sim_server_driver.hpp"
@@ -48,11 +50,12 @@ class SimServer : public testing::TempDirTest {
  protected:
   // Starts the server in lock-step mode on port with the run file run.h5 (plus extra arguments)
   // after the controller has subscribed.
-  void start(int port, const std::vector<std::string>& extra = {}) {
+  void start(int port, const std::vector<std::string>& extra = {},
+             const std::string& scene = kBoxScene) {
     url_ = bus_url(port);
     controller_ = std::make_unique<ServerController>(url_);
     ASSERT_TRUE(controller_->good());
-    std::vector<std::string> args{write("scene.yaml", kBoxScene), "--lcm-url", url_, "--output",
+    std::vector<std::string> args{write("scene.yaml", scene), "--lcm-url", url_, "--output",
                                   (dir_ / "run.h5").string()};
     args.insert(args.end(), extra.begin(), extra.end());
     server_ = std::make_unique<ChildProcess>(SIM_SERVER_PATH, args, dir_);
@@ -120,6 +123,38 @@ TEST_F(SimServer, LockStepAdvancesOneStepPerActivationAndShutsDownCleanly) {
   EXPECT_EQ(f.doubles("/time").size(), static_cast<std::size_t>(kSteps + 1));
   EXPECT_EQ(f.doubles("/activations").back(), 0.5);
   EXPECT_EQ(f.string_attribute("/", "status"), "completed");
+}
+
+TEST_F(SimServer, AReducedModelPublishesItsIndicator) {
+  // The box's reduced model (trained on its full model), checked every 3 steps: each state
+  // carries the indicator of the last check, 0 before the first; the run file the same.
+  const std::string basis = (dir_ / "basis.h5").string();
+  testing::write_reduced_basis_of(scene::parse_scene(kBoxScene, "", "box.yaml"), 40, basis);
+  start(7719, {}, std::string(kBoxScene) + "model: {reduced: '" + basis + "', check_every: 3}\n");
+  ASSERT_TRUE(controller_->wait_model()) << server_->stderr_text();
+  const auto s0 = controller_->wait_step(0);
+  ASSERT_TRUE(s0) << server_->stderr_text();
+  EXPECT_EQ(s0->reduced_model_correction, 0.0);
+  double last = 0.0;
+  for (int k = 1; k <= 6; ++k) {
+    const lcmt_tongue_state s = step_to(k, 0.7);
+    ASSERT_TRUE(s.converged) << s.status;
+    if (k < 3) {
+      EXPECT_EQ(s.reduced_model_correction, 0.0) << "step " << k;
+    }
+    if (k == 3 || k == 6) {
+      EXPECT_GT(s.reduced_model_correction, 0.0) << "step " << k;
+      EXPECT_LT(s.reduced_model_correction, 1e-4) << "step " << k;  // m, far below 1 mm
+    }
+    if (k == 4 || k == 5) {
+      EXPECT_EQ(s.reduced_model_correction, last) << "step " << k;
+    }
+    last = s.reduced_model_correction;
+  }
+  EXPECT_EQ(shut_down(), 0) << server_->stderr_text();
+  const RunFile f(dir_ / "run.h5");
+  ASSERT_TRUE(f.ok());
+  EXPECT_EQ(f.doubles("/solver/reduced_correction").back(), last);
 }
 
 // A bad activation message is counted and changes nothing: after it, a pause publishes the
