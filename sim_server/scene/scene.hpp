@@ -102,6 +102,7 @@
 //     check_every: 10              # steps between checks of the full model's residual (0: none)
 //     warn_above: 0.001            # m: warn once when the full model would correct the reduced
 //                                  # state by more than this
+//     switch_to_full: false        # then go on with the full model from the reduced state
 //   solver: {residual_rtol: 1e-6, residual_atol: 1e-9, increment_rtol: 1e-6,
 //            increment_atol: 1e-12, max_iterations: 25, line_search: true,
 //            max_tangent_reuse: 0, reform_ratio: 0.5, quasi_newton_updates: 0,
@@ -252,6 +253,8 @@ struct ModelSpec {
   // and the largest nodal correction it calls for above which the run warns [m].
   int check_every = 10;
   double warn_above = 1e-3;
+  // Above warn_above, go on with the full model from the reduced model's state.
+  bool switch_to_full = false;
   bool is_reduced() const { return !reduced.empty(); }
 };
 

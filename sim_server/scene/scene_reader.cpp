@@ -710,13 +710,15 @@ class Parser : private common::YamlReader {
 
   void read_model(const YAML::Node& n, const std::string& path, ModelSpec& m) const {
     expect_map(n, path);
-    check_keys(n, path, {"reduced", "check_every", "warn_above"});
+    check_keys(n, path, {"reduced", "check_every", "warn_above", "switch_to_full"});
     m.reduced =
         existing_file(required(n, path, "reduced"), child_path(path, "reduced"), "reduced basis");
     if (const auto c = n["check_every"]; present(c))
       m.check_every = at_least(c, child_path(path, "check_every"), 0);
     if (const auto w = n["warn_above"]; present(w))
       m.warn_above = positive(w, child_path(path, "warn_above"), "m");
+    if (const auto s = n["switch_to_full"]; present(s))
+      m.switch_to_full = boolean(s, child_path(path, "switch_to_full"));
   }
 
   void read_output(const YAML::Node& n, const std::string& path, OutputSpec& o) const {

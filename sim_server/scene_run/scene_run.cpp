@@ -97,26 +97,42 @@ StepResult SceneRun::step(double dt, const fem::Vector& levels) {
   ++step_;
   result.muscles = frame_;
   result.ellipticity_loss = ellipticity_.check(u_, step_, time_);
-  const scene::ModelSpec& model = scene_.model;
-  if (basis_ && model.check_every > 0 && step_ % model.check_every == 0) {
-    const double c = static_cast<reduced::ReducedIntegrator&>(*integrator_).full_model_correction();
-    result.reduced_correction = reduced_correction_ = c;
-    if (!(c <= model.warn_above) && !reduced_warned_) {
-      reduced_warned_ = true;
-      char text[256];
-      std::snprintf(text, sizeof text,
-                    "at t = %.6g s (step %lld) the full model would move the reduced model's "
-                    "state by %.3g mm, more than model.warn_above (%.3g mm): the run has left "
-                    "what the basis was trained on",
-                    time_, static_cast<long long>(step_), 1e3 * c, 1e3 * model.warn_above);
-      result.reduced_warning = text;
-    }
-  }
+  check_reduced(result);
   return result;
+}
+
+void SceneRun::check_reduced(StepResult& result) {
+  const scene::ModelSpec& model = scene_.model;
+  auto* reduced = dynamic_cast<reduced::ReducedIntegrator*>(integrator_.get());
+  if (!reduced || model.check_every == 0 || step_ % model.check_every != 0) return;
+  const double c = reduced->full_model_correction();
+  result.reduced_correction = reduced_correction_ = c;
+  if (c <= model.warn_above || reduced_warned_) return;
+  reduced_warned_ = true;
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "at t = %.6g s (step %lld) the full model would move the reduced model's state "
+                "by %.3g mm, more than model.warn_above (%.3g mm): the run has left what the "
+                "basis was trained on%s",
+                time_, static_cast<long long>(step_), 1e3 * c, 1e3 * model.warn_above,
+                model.switch_to_full ? "; going on with the full model from this state" : "");
+  result.reduced_warning = text;
+  if (!model.switch_to_full) return;
+  // The full model from the reduced state, its acceleration included, with the damping a full
+  // run has (K0 at the initial state).
+  const fem::Vector a = reduced->acceleration();
+  auto full = std::make_unique<fem::NewmarkIntegrator>(*built_.system, built_.dynamic_settings);
+  full->initialize(u_, v_, a, time_, initial_u_);
+  full->prepare(scene_.analysis.dt);
+  integrator_ = std::move(full);
 }
 
 std::optional<EllipticityFinding> SceneRun::finish_checks() {
   return ellipticity_.collect();
+}
+
+bool SceneRun::reduced_now() const {
+  return dynamic_cast<const reduced::ReducedIntegrator*>(integrator_.get()) != nullptr;
 }
 
 fem::Vector SceneRun::positions() const {

@@ -16,7 +16,8 @@
 // A scene with `model: {reduced: FILE}` is stepped by the reduced model of that basis
 // (reduced::ReducedIntegrator) from the same initial state, projected onto the basis; every
 // model.check_every steps the full model's residual at the reduced state is evaluated and
-// reported with the step.
+// reported with the step; above model.warn_above it warns, and with model.switch_to_full the
+// run goes on with the full model from there (until the next restart).
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -102,6 +103,9 @@ class SceneRun {
   // The reduced model's error indicator at its last check [m] (StepResult::reduced_correction);
   // 0 for the full model and before the first check of a run.
   double reduced_correction() const { return reduced_correction_; }
+  // Whether the reduced model steps the run now (false for the full model, and after a switch
+  // to it, model.switch_to_full, until the next restart).
+  bool reduced_now() const;
   // The reduced model's basis; null for the full model.
   const reduced::ReducedBasis* reduced_basis() const { return basis_ ? &*basis_ : nullptr; }
   // The muscles' frame at the current state (what step() returns; at step 0: all activations 0),
@@ -115,6 +119,9 @@ class SceneRun {
   std::unique_ptr<fem::TimeIntegrator> integrator_;
   EllipticityWatch ellipticity_;
   void accept();  // the integrator's state becomes the last accepted one
+  // A reduced model's check on the steps it is due, its warning, and the switch to the full
+  // model when the scene asks for it.
+  void check_reduced(StepResult& result);
 
   fem::Vector initial_u_;
   fem::Vector u_, v_;  // m, m/s: the last accepted state (a failed step may leave the

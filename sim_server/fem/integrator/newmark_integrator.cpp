@@ -123,24 +123,10 @@ void NewmarkIntegrator::initialize(const Vector& u0, const Vector& v0, double t0
   }
   t_ = t0;
   Vector r_full;
-  const RayleighDamping& d = settings_.damping;
   if (!system_.residual(u_, 1.0, r_full, nullptr).ok) {
     throw std::runtime_error("initial state has an inverted element");
   }
-  damping_.reset();
-  dynamic_matrix_.reset();
-  if (d.active()) {
-    damping_.emplace(system_.solid().pattern());
-    damping_->scale_and_add(0.0, d.mass_coefficient, mass_);
-    if (d.stiffness_coefficient != 0.0) {
-      // K0 is the solid's own tangent: the loads' (e.g. active muscles') stiffness at the start
-      // must not stay frozen in the damping for the whole run.
-      SymmetricMatrix K0(system_.solid().pattern());
-      Vector f_int;
-      system_.solid().assemble(u_, f_int, &K0);
-      damping_->scale_and_add(1.0, d.stiffness_coefficient, K0);
-    }
-  }
+  form_damping(u_);
   // M a0 = f_ext - f_int - C v0 over the free dofs.
   Vector rhs = -dofs.gather_free(r_full);
   if (damping_) rhs -= damping_->multiply(dofs.gather_free(v_));
@@ -151,6 +137,31 @@ void NewmarkIntegrator::initialize(const Vector& u0, const Vector& v0, double t0
   newton_.invalidate_factor();
   initialized_ = true;
   in_equilibrium_ = false;
+}
+
+void NewmarkIntegrator::form_damping(const Vector& at) {
+  const RayleighDamping& d = settings_.damping;
+  damping_.reset();
+  dynamic_matrix_.reset();
+  if (!d.active()) return;
+  damping_.emplace(system_.solid().pattern());
+  damping_->scale_and_add(0.0, d.mass_coefficient, mass_);
+  if (d.stiffness_coefficient != 0.0) {
+    // K0 is the solid's own tangent: the loads' (e.g. active muscles') stiffness at the start
+    // must not stay frozen in the damping for the whole run.
+    SymmetricMatrix K0(system_.solid().pattern());
+    Vector f_int;
+    system_.solid().assemble(at, f_int, &K0);
+    damping_->scale_and_add(1.0, d.stiffness_coefficient, K0);
+  }
+}
+
+void NewmarkIntegrator::initialize(const Vector& u0, const Vector& v0, const Vector& a0, double t0,
+                                   const Vector& damping_state) {
+  initialize(u0, v0, t0);
+  a_ = a0;
+  for (int dof : system_.solid().dofs().prescribed_dofs()) a_[dof] = 0.0;
+  form_damping(damping_state);
 }
 
 StepReport NewmarkIntegrator::step(double dt) {

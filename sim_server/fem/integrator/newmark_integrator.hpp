@@ -49,6 +49,14 @@ class NewmarkIntegrator : public TimeIntegrator {
   // is formed here. Throws std::runtime_error when f_int cannot be evaluated at u. A first
   // step() without it starts from rest at u = 0.
   void initialize(const Vector& u0, const Vector& v0, double t0 = 0.0) override;
+  // The same mid-run, for a state another model hands over: the acceleration given instead of
+  // the consistent one (a state that is not an equilibrium of this model would otherwise start
+  // with its whole residual as acceleration), and K0 for the damping taken at damping_state
+  // (the run's initial state, where the other model's damping took it: with the tongue's
+  // stiffness-proportional damping, K0 taken 4 ms into a run moved the box test's free end by
+  // a fifth of its motion).
+  void initialize(const Vector& u0, const Vector& v0, const Vector& a0, double t0,
+                  const Vector& damping_state);
 
   // Forms the constant matrices of a step of dt and factorizes that step's tangent at its
   // predictor, so that the first step() of dt, which starts with them, pays for neither: a
@@ -84,6 +92,8 @@ class NewmarkIntegrator : public TimeIntegrator {
  private:
   class StepProblem;
   bool advance(double dt, StepReport& report, int depth);
+  // C = alpha M + beta_R K0 with K0 the solid's tangent at `at`.
+  void form_damping(const Vector& at);
   // c0 M + c1 C for this dt, formed again only when dt changes.
   const SymmetricMatrix& dynamic_matrix(double dt);
 
