@@ -124,6 +124,7 @@ void ReducedIntegrator::initialize(const fem::Vector& u0, const fem::Vector& v0,
   contraction_ = -1.0;
   in_equilibrium_ = false;
   last_dt_ = 0.0;
+  check_solver_.reset();  // its K0 is the one just taken
 }
 
 bool ReducedIntegrator::form_tangent(const fem::Vector& q, double dt) {
