@@ -6,15 +6,21 @@
 // scene's full model and by its reduced model (the basis given), both through SceneRun from the
 // settled state. Per run and in all: the nodal error of the reduced model against the full one
 // (RMS over nodes and steps, largest), each model's stepping time and real-time factor, Newton
-// iterations per step, and the full model's residual at the reduced state (the error indicator,
-// checked every step here) at its largest.
+// iterations per step, the error indicator at its largest (checked every model.check_every
+// steps, as a scene does), and whether the full model's material lost strong ellipticity.
 //
-// Usage: reduced_benchmark SCENE BASIS [--seed N] [--pairs N] [--mixes N] [--duration S]
+// Usage: reduced_benchmark SCENE BASIS... [--csv FILE] [--seed N] [--pairs N] [--mixes N]
+//                          [--duration S]
+// With several bases (e.g. of different mode counts and samples), each in turn; one CSV row per
+// basis (default logs/reduced.csv), which scripts/plot_rtf_error.py --reduced draws beside the
+// full model's settings.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
+#include <fstream>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -72,60 +78,40 @@ std::vector<reduced::TrainingSequence> experiments(const scene_run::SceneRun& ru
   return out;
 }
 
-int run(int argc, char** argv) {
-  if (argc < 3) {
-    std::fprintf(stderr,
-                 "usage: reduced_benchmark SCENE BASIS [--seed N] [--pairs N] [--mixes N] "
-                 "[--duration S]\n");
-    return 1;
-  }
-  reduced::TrainingOptions held_out;
-  held_out.seed = 1001;  // the training's default is 1: other levels, other mixes
-  held_out.pairs = 4;
-  held_out.mixes = 6;
-  for (int i = 3; i + 1 < argc; i += 2) {
-    const std::string a = argv[i];
-    const double v = std::atof(argv[i + 1]);
-    if (a == "--seed")
-      held_out.seed = static_cast<std::uint32_t>(v);
-    else if (a == "--pairs")
-      held_out.pairs = static_cast<int>(v);
-    else if (a == "--mixes")
-      held_out.mixes = static_cast<int>(v);
-    else if (a == "--duration")
-      held_out.duration = v;
-    else {
-      std::fprintf(stderr, "reduced_benchmark: unknown option %s\n", a.c_str());
-      return 1;
-    }
-  }
-  const scene::Scene full_scene = scene::read_scene(argv[1]);
+// One basis over the held-out sequences: prints a row per run and the totals, returns the row
+// for the CSV.
+struct BasisRow {
+  std::string basis;
+  int modes = 0, sampled = 0, runs = 0, stable_runs = 0;
+  double rtf = 0.0, full_rtf = 0.0, rms_mm = 0.0, max_mm = 0.0, stable_worst_rms_mm = 0.0;
+};
+
+BasisRow evaluate(const scene::Scene& full_scene, const std::string& basis_path,
+                  const reduced::TrainingOptions& held_out) {
   scene::Scene reduced_scene = full_scene;
-  reduced_scene.model.reduced = argv[2];
-  reduced_scene.model.check_every = 1;
+  reduced_scene.model.reduced = basis_path;  // checked every model.check_every steps (10)
   scene_run::SceneRun reduced(reduced_scene, scene::build_scene(reduced_scene));
-  if (!reduced.start().converged) {
-    std::fprintf(stderr, "reduced_benchmark: settling failed\n");
-    return 1;
-  }
+  if (!reduced.start().converged) throw std::runtime_error("settling failed");
   std::vector<std::string> names;
   for (const auto& m : reduced.built().muscles->muscles()) names.push_back(m.name);
   const double dt = full_scene.analysis.dt;
   const int steps = static_cast<int>(std::ceil(held_out.duration / dt - 1e-9));
   const reduced::ReducedBasis& basis = *reduced.reduced_basis();
+  BasisRow row;
+  row.basis = basis_path;
+  row.modes = static_cast<int>(basis.modes.cols());
+  row.sampled = static_cast<int>(basis.sample_elements.size());
   std::printf(
-      "%s, basis %s: %d modes, %zu of %d elements sampled; held-out seed %u, dt %g ms, "
+      "%s, basis %s: %d modes, %d of %d elements sampled; held-out seed %u, dt %g ms, "
       "%d steps a run\n",
-      full_scene.source.c_str(), argv[2], static_cast<int>(basis.modes.cols()),
-      basis.sample_elements.size(), reduced.built().solid->mesh().num_elements(), held_out.seed,
-      dt * 1e3, steps);
+      full_scene.source.c_str(), basis_path.c_str(), row.modes, row.sampled,
+      reduced.built().solid->mesh().num_elements(), held_out.seed, dt * 1e3, steps);
   std::printf("%-16s %8s %8s %9s %9s %7s %7s %12s\n", "run", "RMS[mm]", "max[mm]", "full[ms]",
               "red.[ms]", "it/st", "red.it", "indic[mm]");
   Totals all;
   // Over the runs in which the full model's material stays strongly elliptic (where it can be
-  // trusted), the largest run RMS and how many such runs.
+  // trusted): the largest run RMS.
   double stable_worst_rms = 0.0;
-  int stable_runs = 0;
   const int nodes = reduced.built().solid->mesh().num_nodes();
   std::vector<reduced::TrainingSequence> sequences = experiments(reduced, held_out.duration);
   for (reduced::TrainingSequence& seq : reduced::training_sequences(names, held_out))
@@ -165,9 +151,9 @@ int run(int argc, char** argv) {
         run.max_indicator = std::max(run.max_indicator, *r.reduced_correction);
     }
     if (full.finish_checks()) run.lost_ellipticity = true;
+    const double rms = std::sqrt(run.squared_error / std::max(1L, run.nodes_steps));
     std::printf("%-16s %8.3f %8.3f %9.1f %9.1f %7.2f %7.2f %12.3f%s%s\n", seq.name.c_str(),
-                1e3 * std::sqrt(run.squared_error / std::max(1L, run.nodes_steps)),
-                1e3 * run.max_error, 1e3 * run.full_s, 1e3 * run.reduced_s,
+                1e3 * rms, 1e3 * run.max_error, 1e3 * run.full_s, 1e3 * run.reduced_s,
                 double(run.full_iterations) / std::max(1L, run.steps),
                 double(run.reduced_iterations) / std::max(1L, run.steps), 1e3 * run.max_indicator,
                 run.failures ? "  (a step failed)" : "",
@@ -184,22 +170,76 @@ int run(int argc, char** argv) {
     all.reduced_iterations += run.reduced_iterations;
     all.failures += run.failures;
     if (!run.lost_ellipticity) {
-      ++stable_runs;
-      stable_worst_rms = std::max(
-          stable_worst_rms, std::sqrt(run.squared_error / std::max(1L, run.nodes_steps)));
+      ++row.stable_runs;
+      stable_worst_rms = std::max(stable_worst_rms, rms);
     }
   }
+  row.runs = static_cast<int>(sequences.size());
+  row.rtf = all.simulated_s / all.reduced_s;
+  row.full_rtf = all.simulated_s / all.full_s;
+  row.rms_mm = 1e3 * std::sqrt(all.squared_error / std::max(1L, all.nodes_steps));
+  row.max_mm = 1e3 * all.max_error;
+  row.stable_worst_rms_mm = 1e3 * stable_worst_rms;
   std::printf(
       "all: RMS %.3f mm, max %.3f mm; full model RTF %.2f (%.2f it/step), reduced RTF %.2f "
-      "(%.2f it/step, its check of the full residual every step included), %ld failed runs; "
-      "largest indicator %.3f mm\n",
-      1e3 * std::sqrt(all.squared_error / std::max(1L, all.nodes_steps)), 1e3 * all.max_error,
-      all.simulated_s / all.full_s, double(all.full_iterations) / std::max(1L, all.steps),
-      all.simulated_s / all.reduced_s, double(all.reduced_iterations) / std::max(1L, all.steps),
-      all.failures, 1e3 * all.max_indicator);
-  std::printf("runs in which the full model's material stays strongly elliptic: %d of %zu, the "
-              "worst of them %.3f mm RMS\n",
-              stable_runs, sequences.size(), 1e3 * stable_worst_rms);
+      "(%.2f it/step), %ld failed runs; largest indicator %.3f mm\n",
+      row.rms_mm, row.max_mm, row.full_rtf, double(all.full_iterations) / std::max(1L, all.steps),
+      row.rtf, double(all.reduced_iterations) / std::max(1L, all.steps), all.failures,
+      1e3 * all.max_indicator);
+  std::printf(
+      "runs in which the full model's material stays strongly elliptic: %d of %d, the "
+      "worst of them %.3f mm RMS\n\n",
+      row.stable_runs, row.runs, row.stable_worst_rms_mm);
+  return row;
+}
+
+int run(int argc, char** argv) {
+  reduced::TrainingOptions held_out;
+  held_out.seed = 1001;  // the training's default is 1: other levels, other mixes
+  held_out.pairs = 4;
+  held_out.mixes = 6;
+  std::string csv = "logs/reduced.csv";
+  std::vector<std::string> positional;
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    if (a.rfind("--", 0) != 0) {
+      positional.push_back(a);
+      continue;
+    }
+    if (i + 1 >= argc) throw std::invalid_argument(a + " needs a value");
+    const std::string v = argv[++i];
+    if (a == "--csv")
+      csv = v;
+    else if (a == "--seed")
+      held_out.seed = static_cast<std::uint32_t>(std::stoul(v));
+    else if (a == "--pairs")
+      held_out.pairs = std::stoi(v);
+    else if (a == "--mixes")
+      held_out.mixes = std::stoi(v);
+    else if (a == "--duration")
+      held_out.duration = std::stod(v);
+    else
+      throw std::invalid_argument("unknown option " + a);
+  }
+  if (positional.size() < 2) {
+    std::fprintf(stderr,
+                 "usage: reduced_benchmark SCENE BASIS... [--csv FILE] [--seed N] [--pairs N] "
+                 "[--mixes N] [--duration S]\n");
+    return 1;
+  }
+  const scene::Scene full_scene = scene::read_scene(positional[0]);
+  std::vector<BasisRow> rows;
+  for (std::size_t b = 1; b < positional.size(); ++b)
+    rows.push_back(evaluate(full_scene, positional[b], held_out));
+  std::filesystem::create_directories(std::filesystem::absolute(csv).parent_path());
+  std::ofstream out(csv);
+  out << "basis,modes,sampled,rtf,full_rtf,rms_mm,max_mm,runs,stable_runs,stable_worst_rms_mm\n";
+  for (const BasisRow& r : rows)
+    out << r.basis << ',' << r.modes << ',' << r.sampled << ',' << r.rtf << ',' << r.full_rtf << ','
+        << r.rms_mm << ',' << r.max_mm << ',' << r.runs << ',' << r.stable_runs << ','
+        << r.stable_worst_rms_mm << '\n';
+  if (!out) throw std::runtime_error("cannot write " + csv);
+  std::printf("CSV: %s (scripts/plot_rtf_error.py --reduced draws it)\n", csv.c_str());
   return 0;
 }
 

@@ -11,10 +11,11 @@
 // the best of --repeats runs.
 //
 // Usage: rtf_error_benchmark [--scene FILE] [--csv FILE] [--png FILE] [--reference-dir DIR]
-//                            [--repeats N] [--quick] [--closed-loop FILE]
+//                            [--repeats N] [--quick] [--closed-loop FILE] [--reduced FILE]
 // Writes the table to stdout, the CSV (default logs/rtf_error.csv) and draws the PNG (default
 // logs/rtf_error.png) with scripts/plot_rtf_error.py, with closed_loop_benchmark's rows (default
-// logs/closed_loop.csv) beside them when that file exists.
+// logs/closed_loop.csv) and reduced_benchmark's (default logs/reduced.csv) beside them when those
+// files exist.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -283,7 +284,7 @@ void print_row(const Row& r, std::FILE* to) {
 int run(int argc, char** argv) {
   std::string scene_path = std::string(TONGUE_SOURCE_DIR) + "/scenes/tongue_sg_3n_relax.yaml";
   std::string csv = "logs/rtf_error.csv", png = "logs/rtf_error.png", refdir = "logs/reference";
-  std::string closed_loop_csv = "logs/closed_loop.csv";
+  std::string closed_loop_csv = "logs/closed_loop.csv", reduced_csv = "logs/reduced.csv";
   int repeats = 1;
   bool quick = false;
   for (int i = 1; i < argc; ++i) {
@@ -300,6 +301,8 @@ int run(int argc, char** argv) {
       png = value();
     else if (a == "--closed-loop")
       closed_loop_csv = value();
+    else if (a == "--reduced")
+      reduced_csv = value();
     else if (a == "--reference-dir")
       refdir = value();
     else if (a == "--repeats")
@@ -352,10 +355,12 @@ int run(int argc, char** argv) {
     std::printf("no setting met RMS error <= 0.1 mm\n");
   }
 
-  // closed_loop_benchmark's rows, when it has run, go into the same diagram.
+  // closed_loop_benchmark's and reduced_benchmark's rows, when they have run, go into the same
+  // diagram.
   std::string command = "/usr/bin/python3 " + std::string(TONGUE_SOURCE_DIR) +
                         "/scripts/plot_rtf_error.py " + csv + " " + png;
   if (std::filesystem::exists(closed_loop_csv)) command += " --closed-loop " + closed_loop_csv;
+  if (std::filesystem::exists(reduced_csv)) command += " --reduced " + reduced_csv;
   if (std::system(command.c_str()) != 0) {
     std::fprintf(stderr, "rtf_error_benchmark: the plot failed (%s)\n", command.c_str());
     return 1;

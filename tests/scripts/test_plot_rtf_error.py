@@ -1,5 +1,5 @@
-"""plot_rtf_error.py draws a PNG from rtf_error_benchmark's CSV (with closed_loop_benchmark's
-beside it, or not) and rejects a CSV it cannot use.
+"""plot_rtf_error.py draws a PNG from rtf_error_benchmark's CSV (with closed_loop_benchmark's and
+reduced_benchmark's beside it, or not) and rejects a CSV it cannot use.
 
 Usage: test_plot_rtf_error.py SCRIPT
 """
@@ -21,6 +21,9 @@ CLOSED_LOOP = ("scenario,threads,rtf,physics_ms,server_ms,rms_mm\n"
                "ai,1,2.4,1.3,1.5,0.317\n"
                "ai,2,2.3,1.4,1.6,0.317\n"
                "ku,1,2.6,1.2,1.3,nan\n")
+REDUCED = ("basis,modes,sampled,rtf,full_rtf,rms_mm,max_mm,runs,stable_runs,stable_worst_rms_mm\n"
+           "a.h5,49,485,4.7,3.1,1.22,13.7,34,17,0.70\n"
+           "b.h5,78,555,2.9,2.8,1.15,13.6,34,17,0.49\n")
 
 
 def run(script, *args):
@@ -51,6 +54,15 @@ def main():
         with open(png_path, "rb") as a, open(both, "rb") as b:
             assert a.read() != b.read(), "the closed-loop rows were not drawn"
 
+        reduced = os.path.join(d, "reduced.csv")
+        with open(reduced, "w") as f:
+            f.write(REDUCED)
+        three = os.path.join(d, "three.png")
+        result = run(script, csv_path, three, "--closed-loop", closed, "--reduced", reduced)
+        assert result.returncode == 0, result.stderr
+        with open(both, "rb") as a, open(three, "rb") as b:
+            assert a.read() != b.read(), "the reduced model's rows were not drawn"
+
         bad = os.path.join(d, "bad.csv")
         with open(bad, "w") as f:
             f.write("dt_ms,rtf\n4,0.9\n")
@@ -58,6 +70,9 @@ def main():
         assert result.returncode != 0
         assert "bad.csv" in result.stderr and "missing columns" in result.stderr, result.stderr
         result = run(script, csv_path, os.path.join(d, "bad2.png"), "--closed-loop", bad)
+        assert result.returncode != 0
+        assert "bad.csv" in result.stderr and "missing columns" in result.stderr, result.stderr
+        result = run(script, csv_path, os.path.join(d, "bad3.png"), "--reduced", bad)
         assert result.returncode != 0
         assert "bad.csv" in result.stderr and "missing columns" in result.stderr, result.stderr
 
