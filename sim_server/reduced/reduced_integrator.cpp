@@ -286,7 +286,9 @@ double ReducedIntegrator::full_model_correction() {
   fem::Vector dynamic =
       dofs.gather_free(r) + mass_.multiply(phi_free_ * qdd_ + d.mass_coefficient * v);
   if (d.stiffness_coefficient != 0.0) dynamic += d.stiffness_coefficient * stiffness0_->multiply(v);
-  return check_solver_->solve(dynamic).lpNorm<Eigen::Infinity>();
+  const double correction = check_solver_->solve(dynamic).lpNorm<Eigen::Infinity>();
+  // Never NaN: a state the full model cannot judge is as untrusted as it gets.
+  return std::isnan(correction) ? std::numeric_limits<double>::infinity() : correction;
 }
 
 }  // namespace tongue::reduced
