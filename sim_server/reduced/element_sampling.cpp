@@ -36,16 +36,15 @@ ElementSample sample_elements(const Eigen::MatrixXd& g, int k, double tolerance)
     r = scaled;
   }
   const Eigen::Index rows = r.rows();
+  const Eigen::VectorXd target = r.rowwise().sum();
+  const double target_norm = target.norm();
+  if (!(target_norm > 0.0))
+    throw std::invalid_argument("element sampling: every snapshot's force is 0");
   vigra::linalg::Matrix<double> a(rows, E), b(rows, 1);
   for (Eigen::Index i = 0; i < rows; ++i) {
-    double sum = 0.0;
-    for (Eigen::Index e = 0; e < E; ++e) sum += (a(i, e) = r(i, e));
-    b(i, 0) = sum;
+    for (Eigen::Index e = 0; e < E; ++e) a(i, e) = r(i, e);
+    b(i, 0) = target[i];
   }
-  double b_norm = 0.0;
-  for (Eigen::Index i = 0; i < rows; ++i) b_norm += b(i, 0) * b(i, 0);
-  b_norm = std::sqrt(b_norm);
-  if (!(b_norm > 0.0)) throw std::invalid_argument("element sampling: every snapshot's force is 0");
 
   vigra::ArrayVector<vigra::ArrayVector<vigra::MultiArrayIndex>> active;
   vigra::ArrayVector<vigra::linalg::Matrix<double>> lasso;
@@ -54,7 +53,6 @@ ElementSample sample_elements(const Eigen::MatrixXd& g, int k, double tolerance)
   const unsigned points = vigra::linalg::leastAngleRegression(
       a, b, active, lasso,
       vigra::linalg::LeastAngleRegressionOptions().nnlasso().leastSquaresSolutions(false));
-  const Eigen::VectorXd target = r.rowwise().sum();
   ElementSample best;
   best.relative_error = 1.0;  // w = 0
   for (unsigned p = 0; p < points; ++p) {
@@ -67,7 +65,7 @@ ElementSample sample_elements(const Eigen::MatrixXd& g, int k, double tolerance)
     Eigen::VectorXd w = columns.colPivHouseholderQr().solve(target);
     if (!(w.array() > 0.0).all())
       for (Eigen::Index j = 0; j < m; ++j) w[j] = lasso[p](j, 0);
-    const double error = (columns * w - target).norm() / b_norm;
+    const double error = (columns * w - target).norm() / target_norm;
     if (error >= best.relative_error && p + 1 < points) continue;
     if (error < best.relative_error) {
       best.elements.assign(set.begin(), set.end());

@@ -40,13 +40,14 @@ struct ReducedIntegrator::Step {
 ReducedIntegrator::ReducedIntegrator(const fem::MechanicalSystem& system, ReducedBasis basis,
                                      fem::DynamicSettings settings)
     : system_(system),
-      basis_(std::move(basis)),
       settings_(settings),
-      phi_(basis_.modes),
+      phi_(std::move(basis.modes)),
+      origin_(std::move(basis.origin)),
+      num_sampled_(static_cast<int>(basis.sample_elements.size())),
       mass_(system.solid().mass_matrix(settings.lumped_mass)) {
   const fem::SolidModel& solid = system.solid();
   const fem::DofMap& dofs = solid.dofs();
-  if (phi_.rows() != solid.num_dofs() || basis_.origin.size() != solid.num_dofs())
+  if (phi_.rows() != solid.num_dofs() || origin_.size() != solid.num_dofs())
     throw std::invalid_argument("reduced model: the basis has " + std::to_string(phi_.rows()) +
                                 " rows, the model " + std::to_string(solid.num_dofs()) + " dofs");
   // The snapshots never move a prescribed dof; what the SVD leaves there is round-off.
@@ -59,16 +60,16 @@ ReducedIntegrator::ReducedIntegrator(const fem::MechanicalSystem& system, Reduce
   phi_free_.resize(dofs.num_free(), phi_.cols());
   for (Eigen::Index j = 0; j < phi_.cols(); ++j) phi_free_.col(j) = dofs.gather_free(phi_.col(j));
   weights_.assign(static_cast<std::size_t>(solid.mesh().num_elements()), 0.0);
-  for (std::size_t j = 0; j < basis_.sample_elements.size(); ++j)
-    weights_.at(static_cast<std::size_t>(basis_.sample_elements[j])) =
-        basis_.sample_weights[static_cast<Eigen::Index>(j)];
+  for (std::size_t j = 0; j < basis.sample_elements.size(); ++j)
+    weights_.at(static_cast<std::size_t>(basis.sample_elements[j])) =
+        basis.sample_weights[static_cast<Eigen::Index>(j)];
   mass_r_ = project(mass_);
   // The sample's internal force differs from the mesh's by a little everywhere, also at the
   // origin, which is the full model's equilibrium: the difference there is added back, so that
   // the reduced model rests where the full one does.
   fem::Vector whole, sampled = fem::Vector::Zero(solid.num_dofs());
-  if (!solid.assemble(basis_.origin, whole, nullptr).ok ||
-      !solid.add_weighted(basis_.origin, weights_, sampled, nullptr).ok)
+  if (!solid.assemble(origin_, whole, nullptr).ok ||
+      !solid.add_weighted(origin_, weights_, sampled, nullptr).ok)
     throw std::invalid_argument("reduced model: the basis' origin inverts an element");
   origin_correction_ = phi_.transpose() * (whole - sampled);
   const int k = num_modes();
@@ -84,7 +85,7 @@ Eigen::MatrixXd ReducedIntegrator::project(const fem::SymmetricMatrix& a) const 
 }
 
 void ReducedIntegrator::reconstruct() {
-  u_ = basis_.origin + phi_ * q_;
+  u_ = origin_ + phi_ * q_;
   v_ = phi_ * qd_;
   a_ = phi_ * qdd_;
 }
@@ -92,7 +93,7 @@ void ReducedIntegrator::reconstruct() {
 bool ReducedIntegrator::reduced_force(const fem::Vector& q, fem::Vector& f, fem::SymmetricMatrix* K,
                                       double* load_norm) const {
   fem::Vector r;
-  const fem::Vector u = basis_.origin + phi_ * q;
+  const fem::Vector u = origin_ + phi_ * q;
   if (!system_.residual(u, 1.0, r, K, load_norm, &weights_).ok) return false;
   f.noalias() = phi_.transpose() * r;
   f += origin_correction_;
@@ -100,7 +101,7 @@ bool ReducedIntegrator::reduced_force(const fem::Vector& q, fem::Vector& f, fem:
 }
 
 void ReducedIntegrator::initialize(const fem::Vector& u0, const fem::Vector& v0, double t0) {
-  q_ = phi_.transpose() * (u0 - basis_.origin);
+  q_ = phi_.transpose() * (u0 - origin_);
   qd_ = phi_.transpose() * v0;
   t_ = t0;
   reconstruct();
@@ -266,7 +267,7 @@ double ReducedIntegrator::full_model_correction() {
     if (!stiffness0_) {
       stiffness0_.emplace(solid.pattern());
       fem::Vector f;
-      if (!solid.assemble(basis_.origin, f, &*stiffness0_).ok)
+      if (!solid.assemble(origin_, f, &*stiffness0_).ok)
         return std::numeric_limits<double>::infinity();
     }
     const double c0 = 1.0 / (p.beta * last_dt_ * last_dt_), c1 = p.gamma / (p.beta * last_dt_);

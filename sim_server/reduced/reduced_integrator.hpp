@@ -60,7 +60,7 @@ class ReducedIntegrator : public fem::TimeIntegrator {
   const fem::Vector& acceleration() const override { return a_; }
   double time() const override { return t_; }
   int num_modes() const { return static_cast<int>(phi_.cols()); }
-  int num_sampled_elements() const { return static_cast<int>(basis_.sample_elements.size()); }
+  int num_sampled_elements() const { return num_sampled_; }
 
  private:
   struct Step;
@@ -74,9 +74,10 @@ class ReducedIntegrator : public fem::TimeIntegrator {
   void reconstruct();
 
   const fem::MechanicalSystem& system_;
-  ReducedBasis basis_;
   fem::DynamicSettings settings_;
-  Eigen::MatrixXd phi_;            // all dofs x k
+  Eigen::MatrixXd phi_;  // all dofs x k
+  fem::Vector origin_;   // the basis' origin, full vector [m]
+  int num_sampled_ = 0;
   Eigen::MatrixXd phi_free_;       // free dofs x k
   std::vector<double> weights_;    // per element: the sample's weight, 0 elsewhere
   fem::Vector origin_correction_;  // Phi^T (f_int - f_int of the sample) at the origin
