@@ -184,7 +184,8 @@ class BatchRun {
   int run_dynamic() {
     const scene::AnalysisSpec& a = scene_.analysis;
     scene_run::SceneRun& run = *run_;
-    const fem::StaticReport settled = run.start();
+    // The schedule's first levels are known now: the first step's factor is formed with them.
+    const fem::StaticReport settled = run.start(levels_at(scene::time_step_length(a, 0)));
     Tally settle;
     if (a.settle) {
       for (const fem::StepReport& inc : settled.increments) settle.add(inc);

@@ -141,8 +141,18 @@ bool ReducedIntegrator::form_tangent(const fem::Vector& q, double dt) {
   return true;
 }
 
-void ReducedIntegrator::prepare(double dt) {
-  form_tangent(q_ + dt * qd_, dt);
+fem::StepReport ReducedIntegrator::prepare(double dt) {
+  const auto start = Clock::now();
+  fem::StepReport report;
+  report.dt = dt;
+  report.time = t_;
+  report.substeps = 0;
+  report.converged = form_tangent(q_ + dt * qd_, dt);
+  if (!report.converged) report.message = "the reduced tangent is not positive definite";
+  report.residual_evaluations = 1;
+  report.factorizations = report.converged ? 1 : 0;
+  report.wall_seconds = report.factorization_seconds = seconds_since(start);
+  return report;
 }
 
 fem::StepReport ReducedIntegrator::step(double dt) {

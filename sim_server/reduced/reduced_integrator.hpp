@@ -37,7 +37,7 @@ class ReducedIntegrator : public fem::TimeIntegrator {
   // forces cannot be evaluated there.
   void initialize(const fem::Vector& u0, const fem::Vector& v0, double t0 = 0.0) override;
   // Forms and factorizes the reduced tangent of a step of dt at the predictor.
-  void prepare(double dt) override;
+  fem::StepReport prepare(double dt) override;
   // Advances by dt; cuts and retries on failure like fem::NewmarkIntegrator::step.
   fem::StepReport step(double dt) override;
   // As fem::NewmarkIntegrator: the last step needed no correction and nothing moves faster than

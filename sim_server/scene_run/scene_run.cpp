@@ -32,19 +32,24 @@ int SceneRun::num_muscles() const {
   return built_.muscles ? built_.muscles->num_muscles() : 0;
 }
 
-fem::StaticReport SceneRun::start() {
+fem::StaticReport SceneRun::start(const fem::Vector& first_levels) {
   fem::Vector u = fem::Vector::Zero(built_.solid->num_dofs());
   if (built_.muscles) built_.muscles->set_activations(fem::Vector::Zero(num_muscles()));
   fem::StaticReport report;
   report.converged = true;
   if (scene_.analysis.settle) report = fem::solve_static(*built_.system, u, built_.static_settings);
   initial_u_ = u;
-  if (report.converged) restart();
+  if (report.converged) restart(first_levels);
   return report;
 }
 
-void SceneRun::restart() {
+void SceneRun::restart(const fem::Vector& first_levels) {
+  if (first_levels.size() != 0 && first_levels.size() != num_muscles())
+    throw std::invalid_argument("SceneRun::restart: " + std::to_string(first_levels.size()) +
+                                " first levels for " + std::to_string(num_muscles()) +
+                                " muscles");
   levels_ = fem::Vector::Zero(num_muscles());
+  factor_levels_ = first_levels.size() != 0 ? first_levels : levels_;
   if (built_.muscles) built_.muscles->set_activations(levels_);
   if (basis_)
     integrator_ = std::make_unique<reduced::ReducedIntegrator>(*built_.system, *basis_,
@@ -52,7 +57,9 @@ void SceneRun::restart() {
   else
     integrator_ = std::make_unique<fem::NewmarkIntegrator>(*built_.system, built_.dynamic_settings);
   integrator_->initialize(initial_u_, fem::Vector::Zero(initial_u_.size()), 0.0);
+  if (built_.muscles) built_.muscles->set_activations(factor_levels_);
   integrator_->prepare(scene::time_step_length(scene_.analysis, 0));
+  if (built_.muscles) built_.muscles->set_activations(levels_);
   accept();
   step_ = 0;
   reduced_warned_ = false;
@@ -84,7 +91,14 @@ StepResult SceneRun::step(double dt, const fem::Vector& levels) {
     return result;
   }
   if (built_.muscles) built_.muscles->set_activations(levels);
+  fem::StepReport prepared;
+  if (step_ == 0 && num_muscles() > 0 &&
+      (levels - factor_levels_).lpNorm<Eigen::Infinity>() > kFreshFirstFactor) {
+    prepared = integrator_->prepare(dt);
+    factor_levels_ = levels;
+  }
   result.report = integrator_->step(dt);
+  result.report.add_preparation(prepared);
   if (!result.report.converged) {
     // The state stays at the last accepted step, and so do the levels that led to it.
     if (built_.muscles) built_.muscles->set_activations(levels_);

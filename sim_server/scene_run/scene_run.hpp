@@ -10,8 +10,12 @@
 //     step of force in a_0 would make the average-acceleration scheme's velocities flip sign
 //     from step to step in the stiff modes that the fibre end forces excite.
 //     The first step's tangent is factorized there too (NewmarkIntegrator::prepare), so that
-//     the first step is as quick as the later ones.
+//     the first step is as quick as the later ones, under the first step's levels when the
+//     caller knows them (a scheduled run) and with every muscle off otherwise.
 //  3. step(dt, levels): the muscles act from the first step on, with the levels given for it.
+//     A first step whose levels are not those its factor was formed with (by more than
+//     kFreshFirstFactor) forms it again with them: the run then reaches the same states whether
+//     its levels were known at start-up (sim_batch) or arrive with the step (the server).
 // Activations enter only as the argument of step(): nothing else sets them.
 // A scene with `model: {reduced: FILE}` is stepped by the reduced model of that basis
 // (reduced::ReducedIntegrator) from the same initial state, projected onto the basis; every
@@ -67,12 +71,25 @@ class SceneRun {
   // Settles (when the scene says so) and restarts. Call once before the first step; the report
   // has the settling's increments (none when the scene does not settle). When it says
   // !converged the run cannot start: the initial state is the last accepted increment.
-  fem::StaticReport start();
+  // first_levels: the first step's levels when the caller knows them (empty: all 0), see
+  // restart().
+  fem::StaticReport start(const fem::Vector& first_levels = {});
   // Back to the initial state (settled or rest), at rest, time 0, step 0, all activations 0.
   // Nothing carries over (factorizations, previous dt), so a run after a restart repeats the
   // first one exactly; only a loss of ellipticity found in the last state before it is still
-  // reported, by the next step (its finding names its step).
-  void restart();
+  // reported, by the next step (its finding names its step). The first step's factor is formed
+  // here under first_levels (empty: all 0; the acceleration is taken with all 0 regardless).
+  // Throws std::invalid_argument for first_levels of the wrong size.
+  void restart(const fem::Vector& first_levels = {});
+
+  // How far [1] a first step's levels may be from those its factor was formed with before the
+  // step forms it again. A factor formed without a step of activation converges to the step's
+  // tolerance but not, as a fresh one does, far inside it: SG 3 N + relaxation at dt 4 ms was
+  // 0.0457 mm RMS from its reference with the muscles-off factor, 0.0420 mm with a fresh one
+  // (SG's step is a level of 0.125). A closed loop's controller starts from rest with small
+  // levels (/ai/'s first step: 0.002 at most), which the start-up factor serves as well as a
+  // fresh one; forming it again there would cost a factorization (about 7 ms) per run.
+  static constexpr double kFreshFirstFactor = 0.01;
 
   // Advances by dt [s] with the activation levels [1] of every muscle (num_muscles() entries,
   // each in [0, 1]; callers validate them with their own messages first) acting during the step.
@@ -128,6 +145,7 @@ class SceneRun {
                        // integrator at a substep)
   double time_ = 0.0;  // s
   fem::Vector levels_;
+  fem::Vector factor_levels_;  // the levels the first step's factor was formed with
   run_file::MuscleFrame frame_;  // of u_, v_ and levels_
   std::int64_t step_ = 0;
   bool reduced_warned_ = false;  // in this run (since the last restart)

@@ -104,6 +104,40 @@ TEST(SceneRun, TheFirstStepUsesTheFactorizationMadeAtStart) {
   EXPECT_EQ(plain.displacement(), run.displacement());
 }
 
+// The first step's factor holds the first step's levels whether they were known at start-up (a
+// scheduled run) or came with the step (the server): the same states bit for bit, the factor
+// formed at start-up in the one and within the first step in the other.
+TEST(SceneRun, TheFirstStepsFactorHoldsItsLevelsKnownAtStartOrNot) {
+  const scene::Scene scene = box(true);
+  SceneRun known(scene, scene::build_scene(scene)), unknown(scene, scene::build_scene(scene));
+  ASSERT_TRUE(known.start(level(0.5)).converged);
+  ASSERT_TRUE(unknown.start().converged);
+  EXPECT_EQ(known.levels(), level(0.0));  // the acceleration is still taken with muscles off
+  const StepResult a = known.step(0.002, level(0.5));
+  const StepResult b = unknown.step(0.002, level(0.5));
+  ASSERT_TRUE(a.report.converged && b.report.converged);
+  EXPECT_EQ(a.report.factorizations, 0);
+  EXPECT_EQ(b.report.factorizations, 1);
+  EXPECT_EQ(known.displacement(), unknown.displacement());
+  for (int s = 0; s < 4; ++s) {
+    known.step(0.002, level(0.1 * s));
+    unknown.step(0.002, level(0.1 * s));
+  }
+  EXPECT_EQ(known.displacement(), unknown.displacement());
+  EXPECT_THROW(known.restart(fem::Vector::Zero(2)), std::invalid_argument);
+}
+
+// Levels within SceneRun::kFreshFirstFactor of the start-up factor's keep it: a closed loop
+// starting from rest does not pay a factorization for its controller's first small level.
+TEST(SceneRun, SmallFirstLevelsKeepTheStartUpFactor) {
+  const scene::Scene scene = box(true);
+  SceneRun run(scene, scene::build_scene(scene));
+  ASSERT_TRUE(run.start().converged);
+  const StepResult r = run.step(0.002, level(0.5 * SceneRun::kFreshFirstFactor));
+  ASSERT_TRUE(r.report.converged) << r.report.message;
+  EXPECT_EQ(r.report.factorizations, 0);
+}
+
 TEST(SceneRun, RestartRepeatsTheRunBitForBit) {
   const scene::Scene scene = box(true);
   SceneRun run(scene, scene::build_scene(scene));

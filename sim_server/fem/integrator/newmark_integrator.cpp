@@ -193,13 +193,29 @@ StepReport NewmarkIntegrator::hold(double dt) {
   return report;
 }
 
-void NewmarkIntegrator::prepare(double dt) {
+StepReport NewmarkIntegrator::prepare(double dt) {
   if (!initialized_) initialize(u_, v_, t_);
+  const auto start = std::chrono::steady_clock::now();
   newton_.invalidate_factor();
   last_dt_ = dt;
   StepProblem problem(*this, dt);
   const DofMap& dofs = system_.solid().dofs();
-  newton_.prepare(problem, dofs.gather_free(u_) + dt * dofs.gather_free(v_));
+  const NewtonReport newton =
+      newton_.prepare(problem, dofs.gather_free(u_) + dt * dofs.gather_free(v_));
+  StepReport report;
+  report.dt = dt;
+  report.time = t_;
+  report.substeps = 0;
+  report.converged = newton.converged;
+  report.factorizations = newton.factorizations;
+  report.residual_evaluations = newton.residual_evaluations;
+  report.max_shift = newton.max_shift;
+  report.assembly_seconds = newton.assembly_seconds;
+  report.factorization_seconds = newton.factorization_seconds;
+  report.message = newton.failure;
+  report.wall_seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return report;
 }
 
 bool NewmarkIntegrator::advance(double dt, StepReport& report, int depth) {

@@ -65,7 +65,7 @@ class NewmarkIntegrator : public TimeIntegrator {
   // whose activations differ starts from a slightly stale factor, as any later step whose
   // activations change does. Call after initialize(); a failure only leaves the work to the
   // first step.
-  void prepare(double dt) override;
+  StepReport prepare(double dt) override;
 
   // Advances by dt; cuts and retries on failure. When the report says !converged the state is
   // left at the last accepted substep.

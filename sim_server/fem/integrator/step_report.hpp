@@ -40,6 +40,16 @@ struct StepReport {
     return cuts_left;
   }
 
+  // Adds the work of an integrator's prepare() done within this step (TimeIntegrator::prepare).
+  void add_preparation(const StepReport& prepared) {
+    factorizations += prepared.factorizations;
+    residual_evaluations += prepared.residual_evaluations;
+    assembly_seconds += prepared.assembly_seconds;
+    factorization_seconds += prepared.factorization_seconds;
+    wall_seconds += prepared.wall_seconds;
+    max_shift = std::max(max_shift, prepared.max_shift);
+  }
+
   // Adds the figures of one Newton solve (a step, a substep or a retried increment).
   void add(const NewtonReport& newton) {
     if (newton_solves++ == 0) initial_residual = newton.initial_residual;

@@ -14,8 +14,11 @@ class TimeIntegrator {
 
   // The state u0, v0 (full vectors) at time t0 [s], with the consistent acceleration.
   virtual void initialize(const Vector& u0, const Vector& v0, double t0) = 0;
-  // Start-up work for steps of dt [s], so that the first step costs what later ones do.
-  virtual void prepare(double dt) = 0;
+  // Start-up work for steps of dt [s], so that the first step costs what later ones do: the
+  // first step's factor formed at its predictor under the loads acting now. The report has the
+  // work's figures (factorizations, residual evaluations, their times, wall_seconds) and
+  // converged = whether the factor is ready (when not, the first step forms its own).
+  virtual StepReport prepare(double dt) = 0;
   // Advances by dt [s]; cuts and retries on failure. When the report says !converged the state is
   // left at the last accepted substep.
   virtual StepReport step(double dt) = 0;

@@ -233,13 +233,13 @@ bool NewtonSolver::refactorize(NonlinearProblem& problem, const Vector& x, Vecto
   return true;
 }
 
-bool NewtonSolver::prepare(NonlinearProblem& problem, const Vector& x) {
+NewtonReport NewtonSolver::prepare(NonlinearProblem& problem, const Vector& x) {
   NewtonReport report;
   next_terms_known_ = false;
   Vector r(x.size());
-  if (refactorize(problem, x, r, report)) return true;
-  forget_factor();
-  return false;
+  report.converged = refactorize(problem, x, r, report);
+  if (!report.converged) forget_factor();
+  return report;
 }
 
 bool NewtonSolver::same_engaged_terms(NonlinearProblem& problem, const Vector& at) {

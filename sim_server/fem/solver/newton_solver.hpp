@@ -73,9 +73,10 @@ class NewtonSolver {
   // Forces a fresh tangent at the next iteration (the problem's tangent changed, e.g. new dt).
   void invalidate_factor() { forget_factor(); }
   // Forms and factorizes the problem's tangent at x ahead of the first solve, which then starts
-  // with it (a start-up cost moved out of the first solve); false when that fails, the next
-  // solve then forming its own.
-  bool prepare(NonlinearProblem& problem, const Vector& x);
+  // with it (a start-up cost moved out of the first solve). The report has the work's figures
+  // (one residual and tangent, one factorization) and converged = whether the factor is ready;
+  // when not, the next solve forms its own.
+  NewtonReport prepare(NonlinearProblem& problem, const Vector& x);
 
   const NewtonSettings& settings() const { return settings_; }
   NewtonSettings& settings() { return settings_; }
