@@ -128,6 +128,59 @@ Vector CholmodSolver::solve(const Vector& b) const {
   return result;
 }
 
+Vector CholmodSolver::forward(const Vector& b) const {
+  if (!factored_) throw std::logic_error("forward() called without a successful factorization");
+  Vector y(b.size());
+  if (single_precision_ && !single_factor_.empty()) {
+    single_factor_.forward(b.data(), y.data());
+    return y;
+  }
+  return solve_parts(b, CHOLMOD_P, CHOLMOD_L);
+}
+
+Vector CholmodSolver::backward(const Vector& y) const {
+  if (!factored_) throw std::logic_error("backward() called without a successful factorization");
+  if (single_precision_ && !single_factor_.empty()) {
+    Vector x(y.size());
+    single_factor_.backward(y.data(), x.data());
+    return x;
+  }
+  return solve_parts(y, CHOLMOD_Lt, CHOLMOD_Pt);
+}
+
+SparseColumn CholmodSolver::forward_sparse(const std::array<int, 3>& index,
+                                           const Vec3& direction) const {
+  SparseColumn column;
+  if (single_precision_ && !single_factor_.empty()) {
+    single_factor_.forward_sparse(index.data(), direction.data(), 3, column.rows, column.values);
+    return column;
+  }
+  // In double precision the whole forward substitution; the entries it does not reach stay
+  // exactly 0.
+  Vector b = Vector::Zero(pattern_->size);
+  for (int c = 0; c < 3; ++c)
+    if (index[c] >= 0) b[index[c]] += direction[c];
+  const Vector y = forward(b);
+  for (int i = 0; i < y.size(); ++i) {
+    if (y[i] == 0.0) continue;
+    column.rows.push_back(i);
+    column.values.push_back(y[i]);
+  }
+  return column;
+}
+
+Vector CholmodSolver::solve_parts(const Vector& b, int first, int second) const {
+  cholmod_common& c = impl_->common;
+  std::copy(b.data(), b.data() + b.size(), static_cast<double*>(impl_->rhs->x));
+  cholmod_dense* half = cholmod_solve(first, impl_->factor, impl_->rhs, &c);
+  cholmod_dense* x = half ? cholmod_solve(second, impl_->factor, half, &c) : nullptr;
+  cholmod_free_dense(&half, &c);
+  if (!x) throw std::runtime_error("CHOLMOD solve failed");
+  Vector result = Eigen::Map<const Vector>(static_cast<const double*>(x->x), b.size());
+  cholmod_free_dense(&x, &c);
+  return result;
+}
+
 double CholmodSolver::factor_nonzeros() const {
   return impl_->common.lnz;
 }

@@ -3,7 +3,9 @@
 // Rajamanickam 2008). The fill-reducing ordering and symbolic analysis are done once per
 // sparsity pattern; each factorize() is numeric only. Supernodal, so the dense kernels run in
 // the BLAS the library is linked with.
+#include <array>
 #include <memory>
+#include <vector>
 
 #include "fem/assembly/sparse_matrix.hpp"
 #include "fem/solver/single_precision_factor.hpp"
@@ -21,6 +23,12 @@ struct FactorizationReport {
   double seconds = 0.0;
 };
 
+// A vector held as its nonzeros: rows ascending, and their values.
+struct SparseColumn {
+  std::vector<int> rows;
+  std::vector<double> values;
+};
+
 class CholmodSolver {
  public:
   explicit CholmodSolver(std::shared_ptr<const SparsityPattern> pattern);
@@ -31,6 +39,14 @@ class CholmodSolver {
   FactorizationReport factorize(const SymmetricMatrix& matrix);
   // Solves A x = b with the last successful factorization.
   Vector solve(const Vector& b) const;
+  // Its two halves, for low-rank corrections between them: with P A P^T = L L^T,
+  // forward(b) = L^{-1} P b and backward(y) = P^T L^{-T} y, so solve(b) = backward(forward(b)).
+  Vector forward(const Vector& b) const;
+  Vector backward(const Vector& y) const;
+  // forward() of the vector with `direction` on the unknowns `index` (entries < 0 skipped) and
+  // zeros elsewhere, as its nonzeros. In single precision it visits only the part of L that
+  // such a vector reaches (SinglePrecisionFactor::forward_sparse).
+  SparseColumn forward_sparse(const std::array<int, 3>& index, const Vec3& direction) const;
   // Solves in single precision (single_precision_factor.hpp) from the next factorization on:
   // for iterations that judge their result on a double-precision residual.
   void set_single_precision(bool single) {
@@ -45,6 +61,8 @@ class CholmodSolver {
   double factorization_flops() const;  // floating-point operations of one numeric factorization
 
  private:
+  // b through CHOLMOD's solves of the systems `first` then `second` (CHOLMOD_P, CHOLMOD_L, ...).
+  Vector solve_parts(const Vector& b, int first, int second) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::shared_ptr<const SparsityPattern> pattern_;

@@ -21,8 +21,9 @@ double seconds_since(Clock::time_point start) {
 // within the tolerance.
 constexpr double kFirstContraction = 0.5;
 
-// Rank-one corrections of a reused factor, at most: each new one costs a solve (0.15-0.2 ms on
-// the tongue), so that beyond this many re-forming the factor (about 10 ms) is cheaper.
+// Rank-one corrections of a reused factor, at most: each costs a sparse forward substitution
+// and inner products with the others, and each solve with them an update of the capacitance
+// system; beyond this many re-forming the factor (about 7 ms) is cheaper.
 constexpr int kMaxCorrections = 96;
 // Rank-one terms this close count as the same: directions within 8 degrees, stiffnesses within
 // a factor 4.
@@ -37,6 +38,13 @@ double along(const Sparse& t, const Vector& y) {
   double sum = 0.0;
   for (int c = 0; c < 3; ++c)
     if (t.index[c] >= 0) sum += t.direction[c] * y[t.index[c]];
+  return sum;
+}
+
+// w . y for a sparse w.
+double dot(const SparseColumn& w, const Vector& y) {
+  double sum = 0.0;
+  for (std::size_t e = 0; e < w.rows.size(); ++e) sum += w.values[e] * y[w.rows[e]];
   return sum;
 }
 
@@ -65,6 +73,7 @@ void NewtonSolver::forget_factor() {
   candidates_.clear();
   corrections_.clear();
   columns_.clear();
+  gram_.clear();
 }
 
 void NewtonSolver::add_correction(const RankOneTerm& term, double stiffness) {
@@ -73,10 +82,16 @@ void NewtonSolver::add_correction(const RankOneTerm& term, double stiffness) {
   });
   const int column = static_cast<int>(known - columns_.begin());
   if (known == columns_.end()) {
-    Vector u = Vector::Zero(tangent_.pattern().size);
-    for (int c = 0; c < 3; ++c)
-      if (term.index[c] >= 0) u[term.index[c]] = term.direction[c];
-    columns_.push_back({term.index, term.direction, linear_solver_.solve(u)});
+    SparseColumn w = linear_solver_.forward_sparse(term.index, term.direction);
+    // Its inner products with the columns before it (and itself), through a dense copy.
+    if (scatter_.size() != tangent_.pattern().size) scatter_ = Vector::Zero(tangent_.pattern().size);
+    for (std::size_t e = 0; e < w.rows.size(); ++e) scatter_[w.rows[e]] = w.values[e];
+    std::vector<double> products(columns_.size() + 1);
+    for (std::size_t j = 0; j < columns_.size(); ++j) products[j] = dot(columns_[j].w, scatter_);
+    products.back() = dot(w, scatter_);
+    for (int row : w.rows) scatter_[row] = 0.0;
+    gram_.push_back(std::move(products));
+    columns_.push_back({term.index, term.direction, std::move(w)});
   }
   corrections_.push_back({column, stiffness});
 }
@@ -86,8 +101,10 @@ void NewtonSolver::update_capacitance() {
   if (k == 0) return;
   Eigen::MatrixXd C(k, k);
   for (int i = 0; i < k; ++i)
-    for (int j = 0; j < k; ++j)
-      C(i, j) = along(columns_[corrections_[i].column], columns_[corrections_[j].column].z);
+    for (int j = 0; j < k; ++j) {
+      const int a = corrections_[i].column, b = corrections_[j].column;
+      C(i, j) = a >= b ? gram_[a][b] : gram_[b][a];
+    }
   for (int i = 0; i < k; ++i) C(i, i) += 1.0 / corrections_[i].stiffness;
   capacitance_.compute(C);
 }
@@ -188,14 +205,20 @@ Vector NewtonSolver::direction(const Vector& r) const {
     alpha[i] = updates_[i].inverse_curvature * updates_[i].s.dot(q);
     q -= alpha[i] * updates_[i].y;
   }
-  Vector z = linear_solver_.solve(q);
-  if (!corrections_.empty()) {
+  Vector z;
+  if (corrections_.empty()) {
+    z = linear_solver_.solve(q);
+  } else {
+    Vector y = linear_solver_.forward(q);
     Eigen::VectorXd w(corrections_.size());
     for (std::size_t j = 0; j < corrections_.size(); ++j)
-      w[j] = along(columns_[corrections_[j].column], z);
+      w[j] = dot(columns_[corrections_[j].column].w, y);
     const Eigen::VectorXd t = capacitance_.solve(w);
-    for (std::size_t j = 0; j < corrections_.size(); ++j)
-      z -= t[j] * columns_[corrections_[j].column].z;
+    for (std::size_t j = 0; j < corrections_.size(); ++j) {
+      const SparseColumn& c = columns_[corrections_[j].column].w;
+      for (std::size_t e = 0; e < c.rows.size(); ++e) y[c.rows[e]] -= t[j] * c.values[e];
+    }
+    z = linear_solver_.backward(y);
   }
   for (std::size_t i = 0; i < updates_.size(); ++i) {
     const double beta = updates_[i].inverse_curvature * updates_[i].y.dot(z);
@@ -227,6 +250,7 @@ bool NewtonSolver::refactorize(NonlinearProblem& problem, const Vector& x, Vecto
   updates_.clear();
   corrections_.clear();
   columns_.clear();
+  gram_.clear();
   take_terms(problem, x);
   split_terms();
   factored_terms_ = terms_;

@@ -97,17 +97,23 @@ class NewtonSolver {
   // Rank-one corrections of the reused factor A for the problem's rank-one terms that changed
   // since it was formed (contact springs engaging, +k v v^T, releasing, -k v v^T, or stiffening
   // or softening by a large factor, +(k - k0) v v^T), solved by the Sherman-Morrison-Woodbury
-  // formula (Golub & Van Loan 2013, sec. 2.1.4):
-  //   (A + U D U^T)^-1 = A^-1 - Z (D^-1 + U^T Z)^-1 Z^T,  Z = A^-1 U,
-  // each column of Z one solve with A for one direction u on its unknowns, kept while A lives
+  // formula (Golub & Van Loan 2013, sec. 2.1.4) between the halves of the factor's solve: with
+  // A = P^T L L^T P and W = L^-1 P U,
+  //   (A + U D U^T)^-1 = P^T L^-T (I - W (D^-1 + W^T W)^-1 W^T) L^-1 P.
+  // A column of W is a forward substitution of a vector with three nonzeros, which reaches only
+  // the supernodes on one path of the elimination tree: a few per cent of a solve, and sparse
+  // (CholmodSolver::forward_sparse). Columns are kept while A lives, with their inner products
   // (D holds the stiffness changes, which need no solve).
   std::vector<RankOneTerm> factored_terms_;  // the terms A holds
   struct Column {
     std::array<int, 3> index;
     Vec3 direction;
-    Vector z;  // A^-1 u
+    SparseColumn w;  // L^-1 P u
   };
-  std::vector<Column> columns_;  // every column of Z solved for with this factor
+  std::vector<Column> columns_;  // every column of W solved for with this factor
+  // gram_[i][j] = w_i . w_j for j <= i, over columns_.
+  std::vector<std::vector<double>> gram_;
+  mutable Vector scatter_;  // zero between uses: one column spread out
   struct Correction {
     int column;        // in columns_
     double stiffness;  // the change of k along the column's direction [N/m], non-zero

@@ -53,10 +53,13 @@ inline float dot(const float* __restrict a, const float* __restrict b, int n) {
 }
 
 // L y = y, supernode by supernode: the diagonal block's triangle, then its rows below gathered
-// into `work` by a dense product and scattered into y.
-TONGUE_VECTOR_CLONES void forward(const Layout& f, float* __restrict y, float* __restrict work) {
-  for (int k = 0; k < f.num_super; ++k) {
-    const Supernode s = supernode(f, k);
+// into `work` by a dense product and scattered into y. Every supernode in order, or only the
+// `count` ascending ones of `visit` (those a sparse y reaches).
+TONGUE_VECTOR_CLONES void forward(const Layout& f, float* __restrict y, float* __restrict work,
+                                  const int* visit = nullptr, int count = 0) {
+  const int n = visit ? count : f.num_super;
+  for (int v = 0; v < n; ++v) {
+    const Supernode s = supernode(f, visit ? visit[v] : v);
     float* __restrict yk = y + s.first;
     for (int c = 0; c < s.cols; ++c) {
       const float v = yk[c] * f.inverse_diagonal[s.first + c];
@@ -171,24 +174,92 @@ void SinglePrecisionFactor::assign(const cholmod_factor& factor) {
   }
   y_.resize(n);
   work_.resize(widest);
+  // The elimination tree of the supernodes: a supernode's parent holds the first row below its
+  // diagonal block (its rows are ascending).
+  position_.resize(n);
+  for (int i = 0; i < n; ++i) position_[perm_[i]] = i;
+  supernode_.resize(n);
+  parent_.assign(num_super, -1);
+  for (int k = 0; k < num_super; ++k) {
+    for (int j = super[k]; j < super[k + 1]; ++j) supernode_[j] = k;
+    const int cols = super[k + 1] - super[k];
+    if (pi[k + 1] - pi[k] > cols) parent_[k] = rows_[pi[k] + cols];
+  }
+  for (int& p : parent_)
+    if (p >= 0) p = supernode_[p];
+  sparse_y_.assign(n, 0.0f);
+  visited_.assign(num_super, 0);
+  visit_.reserve(num_super);
+}
+
+auto SinglePrecisionFactor::layout() const {
+  if (empty()) throw std::logic_error("single-precision factor: used before assign()");
+  return Layout{static_cast<int>(super_.size()) - 1,
+          super_.data(),
+          row_start_.data(),
+          value_start_.data(),
+          rows_.data(),
+          values_.data(),
+          inverse_diagonal_.data(),
+          transposed_start_.data(),
+          transposed_.data()};
 }
 
 void SinglePrecisionFactor::solve(const double* b, double* x) const {
-  if (empty()) throw std::logic_error("single-precision factor: solve() before assign()");
+  const Layout f = layout();
   const int n = size();
   for (int i = 0; i < n; ++i) y_[i] = static_cast<float>(b[perm_[i]]);
-  const Layout layout{static_cast<int>(super_.size()) - 1,
-                      super_.data(),
-                      row_start_.data(),
-                      value_start_.data(),
-                      rows_.data(),
-                      values_.data(),
-                      inverse_diagonal_.data(),
-                      transposed_start_.data(),
-                      transposed_.data()};
-  forward(layout, y_.data(), work_.data());
-  backward(layout, y_.data(), work_.data());
+  tongue::fem::forward(f, y_.data(), work_.data());
+  tongue::fem::backward(f, y_.data(), work_.data());
   for (int i = 0; i < n; ++i) x[perm_[i]] = static_cast<double>(y_[i]);
+}
+
+void SinglePrecisionFactor::forward(const double* b, double* y) const {
+  const Layout f = layout();
+  const int n = size();
+  for (int i = 0; i < n; ++i) y_[i] = static_cast<float>(b[perm_[i]]);
+  tongue::fem::forward(f, y_.data(), work_.data());
+  for (int i = 0; i < n; ++i) y[i] = static_cast<double>(y_[i]);
+}
+
+void SinglePrecisionFactor::backward(const double* y, double* x) const {
+  const Layout f = layout();
+  const int n = size();
+  for (int i = 0; i < n; ++i) y_[i] = static_cast<float>(y[i]);
+  tongue::fem::backward(f, y_.data(), work_.data());
+  for (int i = 0; i < n; ++i) x[perm_[i]] = static_cast<double>(y_[i]);
+}
+
+void SinglePrecisionFactor::forward_sparse(const int* unknowns, const double* values, int count,
+                                           std::vector<int>& rows,
+                                           std::vector<double>& out) const {
+  const Layout f = layout();
+  visit_.clear();
+  for (int i = 0; i < count; ++i) {
+    if (unknowns[i] < 0) continue;
+    const int p = position_[unknowns[i]];
+    sparse_y_[p] += static_cast<float>(values[i]);
+    for (int k = supernode_[p]; k >= 0 && !visited_[k]; k = parent_[k]) {
+      visited_[k] = 1;
+      visit_.push_back(k);
+    }
+  }
+  // A parent comes after its children, so ascending order is an order of elimination.
+  std::sort(visit_.begin(), visit_.end());
+  tongue::fem::forward(f, sparse_y_.data(), work_.data(), visit_.data(),
+                       static_cast<int>(visit_.size()));
+  rows.clear();
+  out.clear();
+  for (int k : visit_) {
+    visited_[k] = 0;
+    for (int j = super_[k]; j < super_[k + 1]; ++j) {
+      if (sparse_y_[j] != 0.0f) {
+        rows.push_back(j);
+        out.push_back(static_cast<double>(sparse_y_[j]));
+      }
+      sparse_y_[j] = 0.0f;
+    }
+  }
 }
 
 }  // namespace tongue::fem

@@ -31,9 +31,28 @@ class SinglePrecisionFactor {
 
   // x = A^{-1} b (both of size(); x may alias b).
   void solve(const double* b, double* x) const;
+  // The two halves of solve(), for corrections applied between them: y = L^{-1} P b, and
+  // x = P^T L^{-T} y (y in the factor's order; x may alias y).
+  void forward(const double* b, double* y) const;
+  void backward(const double* y, double* x) const;
+  // forward() of b = sum_i values[i] e_{unknowns[i]} (count entries; unknowns < 0 skipped) as
+  // its nonzeros: `rows` ascending in the factor's order, `out` their values. Only the
+  // supernodes on the paths from those unknowns to the root of the supernodal elimination tree
+  // are visited, the only ones a sparse right-hand side reaches (Gilbert & Peierls 1988; Davis
+  // 2006, *Direct Methods for Sparse Linear Systems*, sec. 3.2): on the tongue a few per cent of
+  // L for one node's unknowns.
+  void forward_sparse(const int* unknowns, const double* values, int count,
+                      std::vector<int>& rows, std::vector<double>& out) const;
 
  private:
+  // The arrays the substitutions read, as one view (its type is the .cpp's); throws
+  // std::logic_error before assign().
+  auto layout() const;
+
   std::vector<int> super_, row_start_, value_start_, rows_, perm_;
+  std::vector<int> position_;   // of each unknown in the factor's order (perm_ inverted)
+  std::vector<int> parent_;     // of each supernode in the elimination tree; -1 for a root
+  std::vector<int> supernode_;  // of each column
   std::vector<float> values_;
   std::vector<float> inverse_diagonal_;  // 1 / L(j, j), per column
   // Each supernode's diagonal block transposed (column-major cols x cols), for the backward
@@ -41,6 +60,9 @@ class SinglePrecisionFactor {
   std::vector<long> transposed_start_;
   std::vector<float> transposed_;
   mutable std::vector<float> y_, work_;
+  mutable std::vector<float> sparse_y_;  // zero between forward_sparse() calls
+  mutable std::vector<int> visit_;       // supernodes forward_sparse() visits
+  mutable std::vector<char> visited_;    // per supernode, false between calls
 };
 
 }  // namespace tongue::fem

@@ -116,5 +116,65 @@ TEST(SinglePrecisionFactor, FollowsEveryFactorizationAndCanBeSwitchedOff) {
   EXPECT_LT((solver.solve(p.b) - exact).norm() / exact.norm(), 1e-10);
 }
 
+// The halves of a solve, for corrections applied between them: backward(forward(b)) is the
+// solve, in single precision bit for bit (the same operations) and in double to round-off.
+TEST(SinglePrecisionFactor, ItsHalvesMakeTheSolve) {
+  const Problem p = effective_tangent();
+  const auto solver = float_solver(p);
+  EXPECT_EQ(solver->backward(solver->forward(p.b)), solver->solve(p.b));
+  solver->set_single_precision(false);
+  ASSERT_TRUE(solver->factorize(p.A).ok);
+  EXPECT_LT((solver->backward(solver->forward(p.b)) - p.exact).norm() / p.exact.norm(), 1e-10);
+}
+
+// A node's unit vector through the forward substitution: the sparse substitution visits only
+// the supernodes it reaches and gives exactly the nonzeros of the whole one; the inner products
+// of two such columns are u_i^T A^-1 u_j (L^-1 P u_i . L^-1 P u_j), to the float factor's
+// accuracy (the first test's bound).
+TEST(SinglePrecisionFactor, ASparseForwardSubstitutionGivesTheNonzerosOfTheWholeOne) {
+  const Problem p = effective_tangent();
+  const int n = static_cast<int>(p.b.size());
+  const double cond = condition_number(p.dense);
+  for (const bool single : {true, false}) {
+    CholmodSolver solver(p.model->pattern());
+    solver.set_single_precision(single);
+    ASSERT_TRUE(solver.factorize(p.A).ok);
+    std::vector<SparseColumn> columns;
+    std::vector<Vector> units;
+    for (const int first : {0, n / 3 - n / 3 % 3, n - 3}) {
+      const std::array<int, 3> index{first, first + 1, first + 2};
+      const Vec3 direction = Vec3(0.48, -0.6, 0.64);  // unit
+      Vector u = Vector::Zero(n);
+      for (int c = 0; c < 3; ++c) u[index[c]] = direction[c];
+      const Vector dense = solver.forward(u);
+      const SparseColumn sparse = solver.forward_sparse(index, direction);
+      std::vector<int> nonzero;
+      for (int i = 0; i < n; ++i)
+        if (dense[i] != 0.0) nonzero.push_back(i);
+      EXPECT_EQ(sparse.rows, nonzero) << "single " << single << ", unknown " << first;
+      for (std::size_t e = 0; e < sparse.rows.size(); ++e)
+        EXPECT_EQ(sparse.values[e], dense[sparse.rows[e]]);
+      EXPECT_LT(static_cast<int>(sparse.rows.size()), n) << "it reached every row";
+      columns.push_back(sparse);
+      units.push_back(u);
+    }
+    const Eigen::LLT<Eigen::MatrixXd> exact(p.dense);
+    for (std::size_t i = 0; i < columns.size(); ++i) {
+      Vector wi = Vector::Zero(n);
+      for (std::size_t e = 0; e < columns[i].rows.size(); ++e)
+        wi[columns[i].rows[e]] = columns[i].values[e];
+      for (std::size_t j = 0; j < columns.size(); ++j) {
+        double product = 0.0;
+        for (std::size_t e = 0; e < columns[j].rows.size(); ++e)
+          product += columns[j].values[e] * wi[columns[j].rows[e]];
+        const double expected = units[i].dot(exact.solve(units[j]));
+        const double scale = std::sqrt(units[i].dot(exact.solve(units[i])) *
+                                       units[j].dot(exact.solve(units[j])));
+        EXPECT_LT(std::abs(product - expected), (single ? cond * kFloatRoundoff : 1e-10) * scale);
+      }
+    }
+  }
+}
+
 }  // namespace
 }  // namespace tongue::fem
