@@ -119,12 +119,16 @@ BasisRow evaluate(const scene::Scene& full_scene, const std::string& basis_path,
   for (const reduced::TrainingSequence& seq : sequences) {
     // A fresh full run for each sequence: a run reports the material's first loss of strong
     // ellipticity once, not again after a restart.
+    // Both start with the first step's factor formed under its levels, as sim_batch does.
+    const auto levels_at = [&](int step) -> fem::Vector {
+      return seq.at(step * dt).cwiseMax(0.0).cwiseMin(1.0);
+    };
     scene_run::SceneRun full(full_scene, scene::build_scene(full_scene));
-    if (!full.start().converged) throw std::runtime_error("settling failed");
-    reduced.restart();
+    if (!full.start(levels_at(1)).converged) throw std::runtime_error("settling failed");
+    reduced.restart(levels_at(1));
     Totals run;
     for (int k = 0; k < steps; ++k) {
-      const fem::Vector levels = seq.at((k + 1) * dt).cwiseMax(0.0).cwiseMin(1.0);
+      const fem::Vector levels = levels_at(k + 1);
       auto t = Clock::now();
       const scene_run::StepResult f = full.step(dt, levels);
       run.full_s += seconds_since(t);

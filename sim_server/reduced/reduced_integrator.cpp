@@ -71,6 +71,7 @@ ReducedIntegrator::ReducedIntegrator(const fem::MechanicalSystem& system, Reduce
   }
   phi_free_.resize(dofs.num_free(), phi_.cols());
   for (Eigen::Index j = 0; j < phi_.cols(); ++j) phi_free_.col(j) = dofs.gather_free(phi_.col(j));
+  phi_rows_ = phi_free_;
   weights_.assign(static_cast<std::size_t>(solid.mesh().num_elements()), 0.0);
   for (std::size_t j = 0; j < basis.sample_elements.size(); ++j)
     weights_.at(static_cast<std::size_t>(basis.sample_elements[j])) =
@@ -90,9 +91,16 @@ ReducedIntegrator::ReducedIntegrator(const fem::MechanicalSystem& system, Reduce
 }
 
 Eigen::MatrixXd ReducedIntegrator::project(const fem::SymmetricMatrix& a) const {
-  Eigen::MatrixXd product(phi_free_.rows(), phi_free_.cols());
-  for (Eigen::Index j = 0; j < phi_free_.cols(); ++j) product.col(j) = a.multiply(phi_free_.col(j));
-  const Eigen::MatrixXd p = phi_free_.transpose() * product;
+  // A Phi in one pass over A's entries, then Phi^T (A Phi) by OpenBLAS.
+  fem::SymmetricMatrix::RowMajorMatrix product =
+      fem::SymmetricMatrix::RowMajorMatrix::Zero(phi_free_.rows(), phi_free_.cols());
+  a.multiply_add(phi_rows_, product);
+  const int n = static_cast<int>(phi_free_.rows()), k = static_cast<int>(phi_free_.cols());
+  Eigen::MatrixXd p(k, k);
+  // The row-major n x k product is, read column-major, its k x n transpose: both operands
+  // are transposed.
+  cblas_dgemm(CblasColMajor, CblasTrans, CblasTrans, k, k, n, 1.0, phi_free_.data(), n,
+              product.data(), k, 0.0, p.data(), k);
   return 0.5 * (p + p.transpose());
 }
 
@@ -127,8 +135,15 @@ void ReducedIntegrator::initialize(const fem::Vector& u0, const fem::Vector& v0,
   reconstruct();
   const fem::SolidModel& solid = system_.solid();
   const fem::RayleighDamping& d = settings_.damping;
-  damping_r_ = d.mass_coefficient * mass_r_;
-  if (d.stiffness_coefficient != 0.0) {
+  // K0 and what is made of it (the damping, the check's factorization) are kept when the state
+  // is the one they were taken at: a restart of a run.
+  const bool same_state = damping_state_.size() == u_.size() && damping_state_ == u_;
+  if (!same_state) {
+    damping_r_ = d.mass_coefficient * mass_r_;
+    stiffness0_.reset();
+    check_solver_.reset();
+  }
+  if (!same_state && d.stiffness_coefficient != 0.0) {
     // K0 of the whole solid, loads left out, as the full integrator's damping has it.
     stiffness0_.emplace(solid.pattern());
     fem::Vector f;
@@ -136,6 +151,7 @@ void ReducedIntegrator::initialize(const fem::Vector& u0, const fem::Vector& v0,
       throw std::runtime_error("initial state has an inverted element");
     damping_r_ += d.stiffness_coefficient * project(*stiffness0_);
   }
+  damping_state_ = u_;
   fem::Vector f;
   if (!reduced_force(q_, f, nullptr, nullptr))
     throw std::runtime_error("initial state has an inverted element");
@@ -145,7 +161,6 @@ void ReducedIntegrator::initialize(const fem::Vector& u0, const fem::Vector& v0,
   contraction_ = -1.0;
   in_equilibrium_ = false;
   last_dt_ = 0.0;
-  check_solver_.reset();  // its K0 is the one just taken
 }
 
 bool ReducedIntegrator::form_tangent(const fem::Vector& q, double dt) {

@@ -79,12 +79,14 @@ class ReducedIntegrator : public fem::TimeIntegrator {
   fem::Vector origin_;   // the basis' origin, full vector [m]
   int num_sampled_ = 0;
   Eigen::MatrixXd phi_free_;       // free dofs x k
+  fem::SymmetricMatrix::RowMajorMatrix phi_rows_;  // the same, row-major (project())
   std::vector<double> weights_;    // per element: the sample's weight, 0 elsewhere
   fem::Vector origin_correction_;  // Phi^T (f_int - f_int of the sample) at the origin
   fem::SymmetricMatrix mass_;
   Eigen::MatrixXd mass_r_, damping_r_;
   std::optional<fem::SymmetricMatrix> stiffness0_;    // K0 over the free dofs, for C and S
   std::unique_ptr<fem::CholmodSolver> check_solver_;  // S, for full_model_correction
+  fem::Vector damping_state_;                         // the state K0 was taken at
   double check_dt_ = 0.0, last_dt_ = 0.0;
   Eigen::LDLT<Eigen::MatrixXd> tangent_;
   double tangent_dt_ = 0.0;  // 0: no factor

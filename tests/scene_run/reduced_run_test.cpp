@@ -103,6 +103,30 @@ TEST_F(ReducedRun, WarnsOncePerRunAboveTheThreshold) {
   }
 }
 
+// A restart keeps what the reduced model made of the basis and of the initial state (its
+// damping, the check's factorization) and repeats the run bit for bit, checks included.
+TEST_F(ReducedRun, RestartRepeatsTheRunBitForBit) {
+  const std::string path = train();
+  const scene::Scene scene = box("model: {reduced: '" + path + "', check_every: 3}\n");
+  SceneRun run(scene, scene::build_scene(scene));
+  ASSERT_TRUE(run.start().converged);
+  const auto drive = [&] {
+    std::vector<double> corrections;
+    for (int k = 0; k < 12; ++k) {
+      const StepResult r = run.step(kDt, level(k, 0.6));
+      EXPECT_TRUE(r.report.converged);
+      if (r.reduced_correction) corrections.push_back(*r.reduced_correction);
+    }
+    return std::make_pair(run.displacement(), corrections);
+  };
+  const auto first = drive();
+  const fem::TimeIntegrator* integrator = &run.integrator();
+  run.restart();
+  EXPECT_EQ(&run.integrator(), integrator);  // the same reduced model, initialized again
+  EXPECT_EQ(drive(), first);
+  EXPECT_EQ(first.second.size(), 4u);
+}
+
 TEST_F(ReducedRun, SwitchesToTheFullModelWhenAskedTo) {
   // Above the (tiny) threshold at the first check, step 2, the run goes on with the full model
   // from the reduced state: no more checks, and it stays near the full run, as near as the

@@ -105,6 +105,17 @@ void SymmetricMatrix::multiply_add(const Vector& x, Vector& y) const {
   }
 }
 
+void SymmetricMatrix::multiply_add(const RowMajorMatrix& X, RowMajorMatrix& Y) const {
+  const SparsityPattern& p = *pattern_;
+  for (int col = 0; col < p.size; ++col) {
+    for (int k = p.column_start[col]; k < p.column_start[col + 1]; ++k) {
+      const int row = p.row_index[k];
+      Y.row(row) += values_[k] * X.row(col);
+      if (row != col) Y.row(col) += values_[k] * X.row(row);
+    }
+  }
+}
+
 double SymmetricMatrix::diagonal(int i) const {
   const int k = pattern_->find(i, i);
   return k >= 0 ? values_[k] : 0.0;

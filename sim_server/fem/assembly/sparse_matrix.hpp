@@ -49,6 +49,10 @@ class SymmetricMatrix {
   Vector multiply(const Vector& x) const;
   // y += A x, into a vector of the right size (no allocation).
   void multiply_add(const Vector& x, Vector& y) const;
+  // Y += A X for k vectors at once, X and Y row-major (size x k): one pass over the entries,
+  // each applied to a row of k, instead of k passes.
+  using RowMajorMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  void multiply_add(const RowMajorMatrix& X, RowMajorMatrix& Y) const;
   double diagonal(int i) const;
   // this = a * this + b * other (same pattern)
   void scale_and_add(double a, double b, const SymmetricMatrix& other);

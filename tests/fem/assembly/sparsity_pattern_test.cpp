@@ -174,6 +174,13 @@ TEST(SymmetricMatrix, OperationsAgreeWithTheDenseMatrix) {
   // Sums of ~100 products of O(1) numbers in a different order: round-off ~1e-14.
   EXPECT_LT((A.multiply(x) - dA * x).norm(), 1e-13 * (dA * x).norm());
   for (int i = 0; i < pattern->size; ++i) EXPECT_EQ(A.diagonal(i), dA(i, i));
+  // Several vectors at once, added to what Y holds.
+  SymmetricMatrix::RowMajorMatrix X(pattern->size, 5), Y(pattern->size, 5);
+  for (double* v = X.data(); v != X.data() + X.size(); ++v) *v = uniform(rng);
+  for (double* v = Y.data(); v != Y.data() + Y.size(); ++v) *v = uniform(rng);
+  const Eigen::MatrixXd expected = Y + dA * X;
+  A.multiply_add(X, Y);
+  EXPECT_LT((Eigen::MatrixXd(Y) - expected).norm(), 1e-13 * expected.norm());
 
   A.scale_and_add(2.0, -3.0, B);
   EXPECT_LT((A.to_dense() - (2.0 * dA - 3.0 * dB)).norm(), 1e-15 * dA.norm());
