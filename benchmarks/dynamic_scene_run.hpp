@@ -35,9 +35,9 @@ inline DynamicRun run_dynamic_scene(
     const std::function<void(double, const fem::Vector&)>& on_state = {}) {
   scene_run::SceneRun run(scene, scene::build_scene(scene));
   const scene::BuiltScene& built = run.built();
-  const fem::StaticReport settled =
-      run.start(built.muscles ? built.activations.levels_at(scene::time_step_length(scene.analysis, 0))
-                              : fem::Vector());
+  const fem::StaticReport settled = run.start(
+      built.muscles ? built.activations.levels_at(scene::time_step_length(scene.analysis, 0))
+                    : fem::Vector());
   if (!settled.converged) throw std::runtime_error("settling failed: " + settled.message);
   if (on_state) on_state(0.0, run.positions());
 

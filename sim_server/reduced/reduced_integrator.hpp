@@ -78,9 +78,9 @@ class ReducedIntegrator : public fem::TimeIntegrator {
   Eigen::MatrixXd phi_;  // all dofs x k
   fem::Vector origin_;   // the basis' origin, full vector [m]
   int num_sampled_ = 0;
-  Eigen::MatrixXd phi_free_;       // free dofs x k
+  Eigen::MatrixXd phi_free_;                       // free dofs x k
   fem::SymmetricMatrix::RowMajorMatrix phi_rows_;  // the same, row-major (project())
-  std::vector<double> weights_;    // per element: the sample's weight, 0 elsewhere
+  std::vector<double> weights_;                    // per element: the sample's weight, 0 elsewhere
   fem::Vector origin_correction_;  // Phi^T (f_int - f_int of the sample) at the origin
   fem::SymmetricMatrix mass_;
   Eigen::MatrixXd mass_r_, damping_r_;

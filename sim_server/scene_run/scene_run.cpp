@@ -46,8 +46,7 @@ fem::StaticReport SceneRun::start(const fem::Vector& first_levels) {
 void SceneRun::restart(const fem::Vector& first_levels) {
   if (first_levels.size() != 0 && first_levels.size() != num_muscles())
     throw std::invalid_argument("SceneRun::restart: " + std::to_string(first_levels.size()) +
-                                " first levels for " + std::to_string(num_muscles()) +
-                                " muscles");
+                                " first levels for " + std::to_string(num_muscles()) + " muscles");
   levels_ = fem::Vector::Zero(num_muscles());
   factor_levels_ = first_levels.size() != 0 ? first_levels : levels_;
   if (built_.muscles) built_.muscles->set_activations(levels_);

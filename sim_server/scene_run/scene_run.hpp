@@ -145,7 +145,7 @@ class SceneRun {
                        // integrator at a substep)
   double time_ = 0.0;  // s
   fem::Vector levels_;
-  fem::Vector factor_levels_;  // the levels the first step's factor was formed with
+  fem::Vector factor_levels_;    // the levels the first step's factor was formed with
   run_file::MuscleFrame frame_;  // of u_, v_ and levels_
   std::int64_t step_ = 0;
   bool reduced_warned_ = false;  // in this run (since the last restart)

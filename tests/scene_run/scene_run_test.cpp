@@ -97,7 +97,8 @@ TEST(SceneRun, TheFirstStepUsesTheFactorizationMadeAtStart) {
 
   const scene::BuiltScene built = scene::build_scene(scene);
   fem::NewmarkIntegrator plain(*built.system, built.dynamic_settings);
-  plain.initialize(run.initial_displacement(), fem::Vector::Zero(run.initial_displacement().size()));
+  plain.initialize(run.initial_displacement(),
+                   fem::Vector::Zero(run.initial_displacement().size()));
   const fem::StepReport first = plain.step(0.002);
   ASSERT_TRUE(first.converged) << first.message;
   EXPECT_EQ(first.factorizations, 1);

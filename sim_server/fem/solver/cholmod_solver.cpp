@@ -119,13 +119,7 @@ Vector CholmodSolver::solve(const Vector& b) const {
     single_factor_.solve(b.data(), x.data());
     return x;
   }
-  cholmod_common& c = impl_->common;
-  std::copy(b.data(), b.data() + b.size(), static_cast<double*>(impl_->rhs->x));
-  cholmod_dense* x = cholmod_solve(CHOLMOD_A, impl_->factor, impl_->rhs, &c);
-  if (!x) throw std::runtime_error("CHOLMOD solve failed");
-  Vector result = Eigen::Map<const Vector>(static_cast<const double*>(x->x), b.size());
-  cholmod_free_dense(&x, &c);
-  return result;
+  return solve_system(b, CHOLMOD_A);
 }
 
 Vector CholmodSolver::forward(const Vector& b) const {
@@ -135,7 +129,7 @@ Vector CholmodSolver::forward(const Vector& b) const {
     single_factor_.forward(b.data(), y.data());
     return y;
   }
-  return solve_parts(b, CHOLMOD_P, CHOLMOD_L);
+  return solve_system(solve_system(b, CHOLMOD_P), CHOLMOD_L);
 }
 
 Vector CholmodSolver::backward(const Vector& y) const {
@@ -145,7 +139,7 @@ Vector CholmodSolver::backward(const Vector& y) const {
     single_factor_.backward(y.data(), x.data());
     return x;
   }
-  return solve_parts(y, CHOLMOD_Lt, CHOLMOD_Pt);
+  return solve_system(solve_system(y, CHOLMOD_Lt), CHOLMOD_Pt);
 }
 
 SparseColumn CholmodSolver::forward_sparse(const std::array<int, 3>& index,
@@ -169,12 +163,10 @@ SparseColumn CholmodSolver::forward_sparse(const std::array<int, 3>& index,
   return column;
 }
 
-Vector CholmodSolver::solve_parts(const Vector& b, int first, int second) const {
+Vector CholmodSolver::solve_system(const Vector& b, int system) const {
   cholmod_common& c = impl_->common;
   std::copy(b.data(), b.data() + b.size(), static_cast<double*>(impl_->rhs->x));
-  cholmod_dense* half = cholmod_solve(first, impl_->factor, impl_->rhs, &c);
-  cholmod_dense* x = half ? cholmod_solve(second, impl_->factor, half, &c) : nullptr;
-  cholmod_free_dense(&half, &c);
+  cholmod_dense* x = cholmod_solve(system, impl_->factor, impl_->rhs, &c);
   if (!x) throw std::runtime_error("CHOLMOD solve failed");
   Vector result = Eigen::Map<const Vector>(static_cast<const double*>(x->x), b.size());
   cholmod_free_dense(&x, &c);

@@ -61,8 +61,8 @@ class CholmodSolver {
   double factorization_flops() const;  // floating-point operations of one numeric factorization
 
  private:
-  // b through CHOLMOD's solves of the systems `first` then `second` (CHOLMOD_P, CHOLMOD_L, ...).
-  Vector solve_parts(const Vector& b, int first, int second) const;
+  // b through CHOLMOD's solve of one of its systems (CHOLMOD_A, CHOLMOD_P, CHOLMOD_L, ...).
+  Vector solve_system(const Vector& b, int system) const;
   struct Impl;
   std::unique_ptr<Impl> impl_;
   std::shared_ptr<const SparsityPattern> pattern_;

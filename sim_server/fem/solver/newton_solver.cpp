@@ -84,7 +84,8 @@ void NewtonSolver::add_correction(const RankOneTerm& term, double stiffness) {
   if (known == columns_.end()) {
     SparseColumn w = linear_solver_.forward_sparse(term.index, term.direction);
     // Its inner products with the columns before it (and itself), through a dense copy.
-    if (scatter_.size() != tangent_.pattern().size) scatter_ = Vector::Zero(tangent_.pattern().size);
+    if (scatter_.size() != tangent_.pattern().size)
+      scatter_ = Vector::Zero(tangent_.pattern().size);
     for (std::size_t e = 0; e < w.rows.size(); ++e) scatter_[w.rows[e]] = w.values[e];
     std::vector<double> products(columns_.size() + 1);
     for (std::size_t j = 0; j < columns_.size(); ++j) products[j] = dot(columns_[j].w, scatter_);

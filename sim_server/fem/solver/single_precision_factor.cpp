@@ -195,14 +195,14 @@ void SinglePrecisionFactor::assign(const cholmod_factor& factor) {
 auto SinglePrecisionFactor::layout() const {
   if (empty()) throw std::logic_error("single-precision factor: used before assign()");
   return Layout{static_cast<int>(super_.size()) - 1,
-          super_.data(),
-          row_start_.data(),
-          value_start_.data(),
-          rows_.data(),
-          values_.data(),
-          inverse_diagonal_.data(),
-          transposed_start_.data(),
-          transposed_.data()};
+                super_.data(),
+                row_start_.data(),
+                value_start_.data(),
+                rows_.data(),
+                values_.data(),
+                inverse_diagonal_.data(),
+                transposed_start_.data(),
+                transposed_.data()};
 }
 
 void SinglePrecisionFactor::solve(const double* b, double* x) const {
@@ -231,8 +231,7 @@ void SinglePrecisionFactor::backward(const double* y, double* x) const {
 }
 
 void SinglePrecisionFactor::forward_sparse(const int* unknowns, const double* values, int count,
-                                           std::vector<int>& rows,
-                                           std::vector<double>& out) const {
+                                           std::vector<int>& rows, std::vector<double>& out) const {
   const Layout f = layout();
   visit_.clear();
   for (int i = 0; i < count; ++i) {

@@ -168,8 +168,8 @@ TEST(SinglePrecisionFactor, ASparseForwardSubstitutionGivesTheNonzerosOfTheWhole
         for (std::size_t e = 0; e < columns[j].rows.size(); ++e)
           product += columns[j].values[e] * wi[columns[j].rows[e]];
         const double expected = units[i].dot(exact.solve(units[j]));
-        const double scale = std::sqrt(units[i].dot(exact.solve(units[i])) *
-                                       units[j].dot(exact.solve(units[j])));
+        const double scale =
+            std::sqrt(units[i].dot(exact.solve(units[i])) * units[j].dot(exact.solve(units[j])));
         EXPECT_LT(std::abs(product - expected), (single ? cond * kFloatRoundoff : 1e-10) * scale);
       }
     }
