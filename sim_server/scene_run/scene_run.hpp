@@ -75,8 +75,9 @@ class SceneRun {
   // restart().
   fem::StaticReport start(const fem::Vector& first_levels = {});
   // Back to the initial state (settled or rest), at rest, time 0, step 0, all activations 0.
-  // Nothing carries over (factorizations, previous dt), so a run after a restart repeats the
-  // first one exactly; only a loss of ellipticity found in the last state before it is still
+  // Nothing that steers a run carries over (factorizations of the step, previous dt; a reduced
+  // model keeps only what it made of the same initial state), so a run after a restart repeats
+  // the first one exactly; only a loss of ellipticity found in the last state before it is still
   // reported, by the next step (its finding names its step). The first step's factor is formed
   // here under first_levels (empty: all 0; the acceleration is taken with all 0 regardless).
   // Throws std::invalid_argument for first_levels of the wrong size.
