@@ -1,0 +1,110 @@
+#include "python/simulation.hpp"
+
+#include <stdexcept>
+
+#include "scene/scene_builder.hpp"
+#include "scene/scene_reader.hpp"
+
+namespace tongue::python {
+
+Simulation::Simulation(const std::string& scene_path) : scene_(scene::read_scene(scene_path)) {
+  run_ = std::make_unique<scene_run::SceneRun>(scene_, scene::build_scene(scene_));
+  const fem::StaticReport settled = run_->start();
+  if (!settled.converged)
+    throw std::runtime_error(scene_path + ": settling failed: " + settled.message);
+  if (run_->built().muscles)
+    for (const auto& m : run_->built().muscles->muscles()) muscle_names_.push_back(m.name);
+}
+
+Simulation::~Simulation() = default;
+
+StepFigures Simulation::step(const fem::Vector& levels) {
+  const scene_run::StepResult r = run_->step(dt(), levels);
+  if (!r.report.converged)
+    throw std::runtime_error("step " + std::to_string(step_count() + 1) +
+                             " did not converge: " + r.report.message);
+  StepFigures f;
+  f.time = r.report.time;
+  f.iterations = r.report.iterations;
+  f.factorizations = r.report.factorizations;
+  f.cuts = r.report.cuts;
+  f.error_estimate = r.report.error_estimate;
+  f.wall_seconds = r.report.wall_seconds;
+  f.held = r.report.held;
+  if (r.ellipticity_loss)
+    f.warnings.push_back("at t = " + std::to_string(r.ellipticity_loss->time) + " s " +
+                         r.ellipticity_loss->warning);
+  if (r.reduced_warning) f.warnings.push_back(*r.reduced_warning);
+  return f;
+}
+
+StepFigures Simulation::step(const std::map<std::string, double>& levels) {
+  fem::Vector all = run_->levels();
+  for (const auto& [name, level] : levels) {
+    bool found = false;
+    for (std::size_t m = 0; m < muscle_names_.size(); ++m) {
+      const std::string& muscle = muscle_names_[m];
+      if (muscle == name || muscle.rfind(name + "_", 0) == 0) {
+        all[static_cast<Eigen::Index>(m)] = level;
+        found = true;
+      }
+    }
+    if (!found)
+      throw std::invalid_argument("'" + name + "' is neither a muscle nor a group of " +
+                                  scene_.source);
+  }
+  return step(all);
+}
+
+void Simulation::reset() {
+  run_->restart();
+}
+
+Eigen::MatrixX3d Simulation::by_node(const fem::Vector& v) {
+  return Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>>(
+      v.data(), v.size() / 3, 3);
+}
+
+Eigen::MatrixX3d Simulation::positions() const {
+  return by_node(run_->positions());
+}
+Eigen::MatrixX3d Simulation::displacements() const {
+  return by_node(run_->displacement());
+}
+Eigen::MatrixX3d Simulation::velocities() const {
+  return by_node(run_->velocity());
+}
+const fem::Vector& Simulation::muscle_lengths() const {
+  return run_->muscle_frame().lengths;
+}
+const fem::Vector& Simulation::muscle_velocities() const {
+  return run_->muscle_frame().velocities;
+}
+
+fem::Vector Simulation::max_forces() const {
+  fem::Vector f(static_cast<Eigen::Index>(muscle_names_.size()));
+  if (run_->built().muscles) {
+    const auto& muscles = run_->built().muscles->muscles();
+    for (std::size_t m = 0; m < muscles.size(); ++m)
+      f[static_cast<Eigen::Index>(m)] = muscles[m].max_force;
+  }
+  return f;
+}
+
+Eigen::MatrixX3d Simulation::rest_positions() const {
+  return by_node(run_->built().solid->rest_positions());
+}
+
+Eigen::Matrix<int, Eigen::Dynamic, 8, Eigen::RowMajor> Simulation::elements() const {
+  const auto& elements = run_->built().solid->mesh().elements;
+  Eigen::Matrix<int, Eigen::Dynamic, 8, Eigen::RowMajor> e(elements.size(), 8);
+  for (std::size_t i = 0; i < elements.size(); ++i)
+    for (int k = 0; k < 8; ++k) e(static_cast<Eigen::Index>(i), k) = elements[i][k];
+  return e;
+}
+
+const std::map<std::string, std::vector<int>>& Simulation::node_sets() const {
+  return run_->built().solid->mesh().node_sets;
+}
+
+}  // namespace tongue::python

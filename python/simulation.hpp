@@ -1,0 +1,80 @@
+#pragma once
+// The simulator in-process, without a bus: a dynamic scene read from its file, settled, and
+// stepped by the scene's dt with the activation levels the caller gives, through the same run
+// object sim_batch and sim_server step (scene_run::SceneRun). The Python module `tongue`
+// (module.cpp) exposes it; this class holds everything but the Python types, so that the
+// binding only converts.
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "fem/types.hpp"
+#include "scene/scene.hpp"
+#include "scene_run/scene_run.hpp"
+
+namespace tongue::python {
+
+// What one step did.
+struct StepFigures {
+  double time = 0.0;  // s, at the end of the step
+  int iterations = 0, factorizations = 0, cuts = 0;
+  double error_estimate = 0.0;  // m, Newton's estimate of the error left
+  double wall_seconds = 0.0;    // s
+  bool held = false;            // taken as the identity from a state at rest
+  // Warnings the step raised, empty when none: the material's first loss of strong ellipticity
+  // (found off the step's critical path, so reported with the step after the state it names),
+  // a reduced model's error indicator above the scene's threshold.
+  std::vector<std::string> warnings;
+};
+
+class Simulation {
+ public:
+  // Reads, builds and settles the scene. Throws common::KeyPathError (a std::runtime_error)
+  // naming the file and key for a scene that cannot be read or built, std::invalid_argument for
+  // a scene that is not dynamic, std::runtime_error when the settling does not converge.
+  explicit Simulation(const std::string& scene_path);
+  ~Simulation();
+  Simulation(const Simulation&) = delete;  // the run refers to the scene held here
+  Simulation& operator=(const Simulation&) = delete;
+
+  // One step of the scene's dt with the levels [1] of every muscle, in muscle_names() order.
+  // Throws std::invalid_argument for the wrong count or a level outside [0, 1], and
+  // std::runtime_error with the solver's message when the step does not converge (the state
+  // stays at the last accepted step).
+  StepFigures step(const fem::Vector& levels);
+  // The same with some muscles named (muscle or group names: "SG" sets SG_left and SG_right);
+  // the others keep the levels of the last step. Throws std::invalid_argument for a name that
+  // is neither.
+  StepFigures step(const std::map<std::string, double>& levels);
+  // Back to the settled state at time 0, all levels 0; the run that follows repeats the first.
+  void reset();
+
+  // The state after the last step.
+  double time() const { return run_->time(); }  // s
+  std::int64_t step_count() const { return run_->step_count(); }
+  double dt() const { return scene_.analysis.dt; }              // s
+  Eigen::MatrixX3d positions() const;                           // m, one row per node
+  Eigen::MatrixX3d displacements() const;                       // m, from the rest positions
+  Eigen::MatrixX3d velocities() const;                          // m/s
+  const fem::Vector& levels() const { return run_->levels(); }  // [1], of the last step
+  const fem::Vector& muscle_lengths() const;                    // m
+  const fem::Vector& muscle_velocities() const;                 // m/s, lengthening
+
+  // The model.
+  const std::string& scene_path() const { return scene_.source; }
+  const std::vector<std::string>& muscle_names() const { return muscle_names_; }
+  fem::Vector max_forces() const;           // F_max [N], in muscle_names() order
+  Eigen::MatrixX3d rest_positions() const;  // m
+  Eigen::Matrix<int, Eigen::Dynamic, 8, Eigen::RowMajor> elements() const;  // node indices
+  const std::map<std::string, std::vector<int>>& node_sets() const;
+
+ private:
+  static Eigen::MatrixX3d by_node(const fem::Vector& v);
+  scene::Scene scene_;
+  std::unique_ptr<scene_run::SceneRun> run_;
+  std::vector<std::string> muscle_names_;
+};
+
+}  // namespace tongue::python
