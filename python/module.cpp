@@ -39,7 +39,8 @@ PYBIND11_MODULE(tongue, m) {
       .def_readonly("cuts", &StepFigures::cuts, "times the step was halved and retried")
       .def_readonly("error_estimate", &StepFigures::error_estimate,
                     "Newton's estimate of the error left in the displacement [m]")
-      .def_readonly("wall_seconds", &StepFigures::wall_seconds, "wall time of the step [s]")
+      .def_readonly("wall_seconds", &StepFigures::wall_seconds,
+                    "wall time of the step in C++, the Python call around it not counted [s]")
       .def_readonly("held", &StepFigures::held, "taken as the identity from a state at rest")
       .def_readonly("warnings", &StepFigures::warnings,
                     "warnings the step raised (also issued as RuntimeWarning)")

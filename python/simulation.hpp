@@ -21,7 +21,7 @@ struct StepFigures {
   double time = 0.0;  // s, at the end of the step
   int iterations = 0, factorizations = 0, cuts = 0;
   double error_estimate = 0.0;  // m, Newton's estimate of the error left
-  double wall_seconds = 0.0;    // s
+  double wall_seconds = 0.0;    // s, of the step in C++ (SceneRun::step)
   bool held = false;            // taken as the identity from a state at rest
   // Warnings the step raised, empty when none: the material's first loss of strong ellipticity
   // (found off the step's critical path, so reported with the step after the state it names),
