@@ -5,9 +5,11 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "python/run_data.hpp"
 #include "python/simulation.hpp"
 
 namespace py = pybind11;
+using tongue::python::RunData;
 using tongue::python::Simulation;
 using tongue::python::StepFigures;
 
@@ -25,6 +27,19 @@ StepFigures step(Simulation& simulation, const Levels& levels) {
   for (const std::string& w : figures.warnings)
     if (PyErr_WarnEx(PyExc_RuntimeWarning, w.c_str(), 1) != 0) throw py::error_already_set();
   return figures;
+}
+
+// A dataset as a NumPy array of its shape.
+py::array_t<double> to_array(const tongue::python::Dataset& d) {
+  std::vector<py::ssize_t> shape(d.shape.begin(), d.shape.end());
+  py::array_t<double> a(shape);
+  std::copy(d.values.begin(), d.values.end(), a.mutable_data());
+  return a;
+}
+
+py::array_t<double> to_array(std::vector<double> v) {
+  const std::size_t n = v.size();
+  return to_array(tongue::python::Dataset{std::move(v), {n}});
 }
 
 }  // namespace
@@ -86,4 +101,42 @@ PYBIND11_MODULE(tongue, m) {
                              "hexahedra as 8 node indices each (ANSYS SOLID185 order), (e, 8)")
       .def_property_readonly("node_sets", &Simulation::node_sets,
                              "named node sets (landmarks, constraints, muscles): name -> indices");
+
+  py::class_<RunData>(
+      m, "RunFile", "A run file (HDF5) written by sim_batch, sim_server or the runner, read back.")
+      .def(py::init<const std::string&>(), py::arg("path"),
+           "Opens the file; RuntimeError naming it when it is not a run file.")
+      .def_property_readonly("path", &RunData::path)
+      .def_property_readonly(
+          "time", [](const RunData& r) { return to_array(r.dataset("/time")); },
+          "each frame's time [s], (T,)")
+      .def_property_readonly(
+          "positions", [](const RunData& r) { return to_array(r.dataset("/positions")); },
+          "node positions [m], (T, n, 3)")
+      .def_property_readonly(
+          "rest_positions", [](const RunData& r) { return to_array(r.dataset("/rest_positions")); },
+          "the mesh's rest positions [m], (n, 3)")
+      .def_property_readonly("muscle_names", &RunData::muscle_names, "the muscles, in order")
+      .def_property_readonly(
+          "activations", [](const RunData& r) { return to_array(r.dataset("/activations")); },
+          "each frame's activation levels [1], (T, muscles)")
+      .def_property_readonly("status", &RunData::status,
+                             "how the run ended ('completed', ...; '' when not said)")
+      .def(
+          "dataset",
+          [](const RunData& r, const std::string& name) { return to_array(r.dataset(name)); },
+          py::arg("name"), "any dataset by name ('/solver/iterations', ...), as an array")
+      .def("has", &RunData::has, py::arg("name"), "whether the file has that dataset or group")
+      .def(
+          "muscle",
+          [](const RunData& r, const std::string& name) {
+            py::dict series;
+            series["activation"] = to_array(r.muscle_series("/activations", name));
+            series["length"] = to_array(r.muscle_series("/muscles/length", name));
+            series["velocity"] = to_array(r.muscle_series("/muscles/velocity", name));
+            return series;
+          },
+          py::arg("name"),
+          "one muscle's series by name: {'activation' [1], 'length' [m], 'velocity' [m/s]}, "
+          "one value per frame; ValueError for a name not in the run");
 }
