@@ -1,6 +1,6 @@
 #pragma once
 // The loop every controller program runs against one tongue server (lock-step protocol: README
-// "Running the server"):
+// "Running the server"), a ControlSession (control_session.hpp) driven for a Controller:
 //
 // 1. Wait for the model on <prefix>MODEL. Without one within 200 ms, send "describe" on
 //    <prefix>COMMAND, again after 400 ms, 800 ms, then every second (a server still settling
