@@ -1,10 +1,12 @@
-// The Python module `tongue`: the simulator in-process (Simulation). NumPy arrays in SI units;
+// The Python module `tongue`: the simulator in-process (Simulation), run files (RunFile) and a
+// controller's connection to a server (BusClient, bus_client_bindings.cpp). NumPy arrays in SI units;
 // the library's exceptions become Python's (std::invalid_argument: ValueError, others:
 // RuntimeError) with the library's messages. A step releases the GIL.
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include "python/bindings.hpp"
 #include "python/run_data.hpp"
 #include "python/simulation.hpp"
 
@@ -139,4 +141,6 @@ PYBIND11_MODULE(tongue, m) {
           py::arg("name"),
           "one muscle's series by name: {'activation' [1], 'length' [m], 'velocity' [m/s]}, "
           "one value per frame; ValueError for a name not in the run");
+
+  tongue::python::bind_bus_client(m);
 }
