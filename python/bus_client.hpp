@@ -38,6 +38,7 @@ class BusClient {
   const controller::LoopOutcome& outcome() const { return session_.outcome(); }
   const controller::CommonOptions& options() const { return session_.options(); }
   void fail(const std::string& what) { session_.fail(what); }
+  void end_after(std::int64_t step, const std::string& reason) { session_.end_after(step, reason); }
   // The controllers' summary line (control_loop.hpp), with the caller's own figures after it.
   std::string summary(const std::string& controller_summary) const;
 

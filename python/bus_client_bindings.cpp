@@ -7,8 +7,8 @@
 
 #include <Python.h>
 
-#include "python/bindings.hpp"
 #include "controller/muscle_selection.hpp"
+#include "python/bindings.hpp"
 #include "python/bus_client.hpp"
 
 namespace py = pybind11;
@@ -105,8 +105,8 @@ std::string mode_name(LoopMode mode) {
 
 void require_mode(const BusClient& client, LoopMode mode) {
   if (client.options().mode != mode)
-    throw py::value_error("the client runs in " + mode_name(client.options().mode) +
-                          " mode, not " + mode_name(mode) + " (ControllerOptions(mode=...))");
+    throw py::value_error("the client runs in " + mode_name(client.options().mode) + " mode, not " +
+                          mode_name(mode) + " (ControllerOptions(mode=...))");
 }
 
 // A failure of the bus (LCM, or a state that does not fit the model) ends the session with exit
@@ -158,20 +158,27 @@ void bind_bus_client(py::module_& m) {
       "option, a missing value or a bad common value.");
   m.def("controller_usage", &controller::common_usage,
         "The usage lines of the common options, for a controller's --help.");
+  m.def("select_muscles", &controller::select_muscles, py::arg("name"), py::arg("muscle_names"),
+        "Indices into muscle_names of the muscles `name` selects: the muscle of that name, or "
+        "the group of every muscle named `name` or starting with `name`_ ('SG': SG_left, "
+        "SG_right); empty when none.");
+  m.def("muscle_group", &controller::muscle_group, py::arg("muscle_name"),
+        "The group of a muscle: its name without _left or _right.");
 
   py::class_<Model>(m, "Model", "The server's model message: its mesh, muscles and landmarks.")
       .def_readonly("scene", &Model::scene, "the scene file the server runs")
       .def_readonly("dt", &Model::dt, "time step [s]")
       .def_readonly("num_nodes", &Model::num_nodes)
-      .def_property_readonly("rest_positions",
-                             [](const Model& m) { return array(m.rest_positions, 3); },
-                             "node rest positions [m], (n, 3)")
-      .def_property_readonly("elements", [](const Model& m) { return array(m.elements, 8); },
-                             "hexahedra as 8 node indices each, (e, 8)")
+      .def_property_readonly(
+          "rest_positions", [](const Model& m) { return array(m.rest_positions, 3); },
+          "node rest positions [m], (n, 3)")
+      .def_property_readonly(
+          "elements", [](const Model& m) { return array(m.elements, 8); },
+          "hexahedra as 8 node indices each, (e, 8)")
       .def_readonly("muscle_names", &Model::muscle_names, "the muscles, in order")
-      .def_property_readonly("max_forces",
-                             [](const Model& m) { return array(m.muscle_max_forces); },
-                             "each muscle's F_max [N]")
+      .def_property_readonly(
+          "max_forces", [](const Model& m) { return array(m.muscle_max_forces); },
+          "each muscle's F_max [N]")
       .def_property_readonly(
           "landmarks",
           [](const Model& m) {
@@ -187,17 +194,20 @@ void bind_bus_client(py::module_& m) {
       .def_readonly("step", &State::step, "steps since the start (0: the initial state)")
       .def_readonly("time", &State::time, "simulated time [s]")
       .def_readonly("utime", &State::utime, "wall-clock time of publication [us]")
-      .def_property_readonly("node_indices", [](const State& s) { return array(s.node_indices); },
-                             "the nodes published, in the order of positions")
-      .def_property_readonly("positions", [](const State& s) { return array(s.positions, 3); },
-                             "positions of the nodes published [m], (k, 3)")
-      .def_property_readonly("muscle_lengths",
-                             [](const State& s) { return array(s.muscle_lengths); }, "[m]")
-      .def_property_readonly("muscle_velocities",
-                             [](const State& s) { return array(s.muscle_velocities); },
-                             "lengthening rates [m/s]")
-      .def_property_readonly("activations", [](const State& s) { return array(s.activations); },
-                             "the levels the step used [1]")
+      .def_property_readonly(
+          "node_indices", [](const State& s) { return array(s.node_indices); },
+          "the nodes published, in the order of positions")
+      .def_property_readonly(
+          "positions", [](const State& s) { return array(s.positions, 3); },
+          "positions of the nodes published [m], (k, 3)")
+      .def_property_readonly(
+          "muscle_lengths", [](const State& s) { return array(s.muscle_lengths); }, "[m]")
+      .def_property_readonly(
+          "muscle_velocities", [](const State& s) { return array(s.muscle_velocities); },
+          "lengthening rates [m/s]")
+      .def_property_readonly(
+          "activations", [](const State& s) { return array(s.activations); },
+          "the levels the step used [1]")
       .def_readonly("newton_iterations", &State::newton_iterations)
       .def_readonly("residual_norm", &State::residual_norm)
       .def_readonly("step_wall_time", &State::step_wall_time, "[s]")
@@ -205,15 +215,15 @@ void bind_bus_client(py::module_& m) {
       .def_readonly("converged", &State::converged)
       .def_readonly("status", &State::status)
       .def_property_readonly("contact_nodes", [](const State& s) { return array(s.contact_nodes); })
-      .def_property_readonly("contact_obstacles",
-                             [](const State& s) { return array(s.contact_obstacles); },
-                             "the obstacle each contact node presses (index in obstacle_names)")
-      .def_property_readonly("contact_forces",
-                             [](const State& s) { return array(s.contact_forces, 3); },
-                             "force of the obstacle on each contact node [N], (c, 3)")
-      .def_property_readonly("obstacle_forces",
-                             [](const State& s) { return array(s.obstacle_forces, 3); },
-                             "force on each obstacle [N], (o, 3)")
+      .def_property_readonly(
+          "contact_obstacles", [](const State& s) { return array(s.contact_obstacles); },
+          "the obstacle each contact node presses (index in obstacle_names)")
+      .def_property_readonly(
+          "contact_forces", [](const State& s) { return array(s.contact_forces, 3); },
+          "force of the obstacle on each contact node [N], (c, 3)")
+      .def_property_readonly(
+          "obstacle_forces", [](const State& s) { return array(s.obstacle_forces, 3); },
+          "force on each obstacle [N], (o, 3)")
       .def_readonly("max_penetration", &State::max_penetration, "[m]")
       .def("__repr__", [](const State& s) {
         return "State(step=" + std::to_string(s.step) + ", time=" + std::to_string(s.time) + ")";
@@ -301,11 +311,23 @@ void bind_bus_client(py::module_& m) {
           "levels) or every muscle's level in model.muscle_names order. Nothing is sent for a "
           "state a later one already follows, nor after the last. RuntimeError when that state "
           "was answered already.")
-      .def_property_readonly("exit_code", [](const BusClient& c) { return c.outcome().exit_code; },
-                             "the C++ controllers' exit code for how the session ended (0 while "
-                             "it runs)")
-      .def_property_readonly("reason", [](const BusClient& c) { return c.outcome().reason; },
-                             "why the session ended ('' while it runs)")
+      .def_property_readonly("awaiting_answer", &BusClient::awaiting_answer,
+                             "whether the state last handed out waits for send()")
+      .def(
+          "end_after",
+          [](BusClient& c, std::int64_t step, const std::string& reason) {
+            c.end_after(step, reason);
+          },
+          py::arg("step"), py::arg("reason") = " (the controller's last step)",
+          "Ends the session after the state of step (when before max_steps), with exit code 0 "
+          "and reason 'reached step N' + reason.")
+      .def_property_readonly(
+          "exit_code", [](const BusClient& c) { return c.outcome().exit_code; },
+          "the C++ controllers' exit code for how the session ended (0 while "
+          "it runs)")
+      .def_property_readonly(
+          "reason", [](const BusClient& c) { return c.outcome().reason; },
+          "why the session ended ('' while it runs)")
       .def_property_readonly("options", &BusClient::options)
       .def(
           "fail", [](BusClient& c, const std::string& what) { c.fail(what); }, py::arg("what"),

@@ -1,6 +1,6 @@
 // The Python module `tongue`: the simulator in-process (Simulation), run files (RunFile) and a
-// controller's connection to a server (BusClient, bus_client_bindings.cpp). NumPy arrays in SI units;
-// the library's exceptions become Python's (std::invalid_argument: ValueError, others:
+// controller's connection to a server (BusClient, bus_client_bindings.cpp). NumPy arrays in SI
+// units; the library's exceptions become Python's (std::invalid_argument: ValueError, others:
 // RuntimeError) with the library's messages. A step releases the GIL.
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
