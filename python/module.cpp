@@ -83,6 +83,16 @@ PYBIND11_MODULE(tongue, m) {
       .def("reset", &Simulation::reset,
            "Back to the settled state at time 0 with all levels 0; the run that follows repeats "
            "the first one exactly.")
+      .def("run_file", &Simulation::open_run_file, py::arg("path"),
+           "Writes the run from here on into a run file at path (as sim_batch's, readable with "
+           "RunFile): the current state as its first frame, then a frame per step; a reset writes "
+           "the settled state again. A file already being written is closed first. RuntimeError "
+           "naming the file when it cannot be created.")
+      .def("close_run_file", &Simulation::close_run_file,
+           "Marks the run file 'completed' (or 'failed: ...' after a step that did not converge) "
+           "and closes it; also done when the Simulation is deleted.")
+      .def_property_readonly("run_file_path", &Simulation::run_file_path,
+                             "the run file being written ('' when none)")
       .def_property_readonly("time", &Simulation::time, "simulated time [s]")
       .def_property_readonly("step_count", &Simulation::step_count, "steps since the start")
       .def_property_readonly("dt", &Simulation::dt, "the scene's time step [s]")

@@ -5,6 +5,7 @@
 
 #include "scene/scene_builder.hpp"
 #include "scene/scene_reader.hpp"
+#include "scene_run/scene_run_file.hpp"
 
 namespace tongue::python {
 
@@ -17,16 +18,51 @@ Simulation::Simulation(const std::string& scene_path) : scene_(scene::read_scene
     for (const auto& m : run_->built().muscles->muscles()) muscle_names_.push_back(m.name);
 }
 
-Simulation::~Simulation() = default;
+Simulation::~Simulation() {
+  close_run_file();
+}
+
+void Simulation::open_run_file(const std::string& path) {
+  close_run_file();
+  log_ = std::make_unique<run_file::RunFileQueue>(
+      scene_run::open_scene_run_file(path, scene_, run_->built()));
+  log_path_ = path;
+  resets_ = 0;
+  failure_.clear();
+  write_frame({});
+}
+
+void Simulation::close_run_file() {
+  if (!log_) return;
+  try {
+    log_->set_attribute("status", failure_.empty() ? "completed" : "failed: " + failure_);
+    log_->close();
+  } catch (...) {
+    // The destructor's call: a write error was the caller's to see at the step that made it.
+  }
+  log_.reset();
+  log_path_.clear();
+}
+
+void Simulation::write_frame(const run_file::SolverFigures& figures) {
+  if (!log_) return;
+  const scene::BuiltScene& built = run_->built();
+  log_->append(run_->time(), built.solid->rest_positions() + run_->displacement(), figures,
+               run_->muscle_frame(), scene_run::scene_contact_frame(built, run_->displacement()));
+}
 
 StepFigures Simulation::step(const fem::Vector& levels) {
   const auto start = std::chrono::steady_clock::now();
   const scene_run::StepResult r = run_->step(dt(), levels);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (!r.report.converged)
-    throw std::runtime_error("step " + std::to_string(step_count() + 1) +
-                             " did not converge: " + r.report.message);
+  if (!r.report.converged) {
+    failure_ = "step " + std::to_string(step_count() + 1) + " did not converge: " + r.report.message;
+    throw std::runtime_error(failure_);
+  }
+  failure_.clear();
+  write_frame({r.report.iterations, r.report.final_residual, r.report.wall_seconds,
+               r.report.cuts, run_->reduced_correction()});
   StepFigures f;
   f.time = r.report.time;
   f.iterations = r.report.iterations;
@@ -62,6 +98,9 @@ StepFigures Simulation::step(const std::map<std::string, double>& levels) {
 
 void Simulation::reset() {
   run_->restart();
+  if (!log_) return;
+  log_->set_attribute("resets", std::to_string(++resets_));
+  write_frame({});
 }
 
 Eigen::MatrixX3d Simulation::by_node(const fem::Vector& v) {

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "fem/types.hpp"
+#include "run_file/run_file_queue.hpp"
 #include "scene/scene.hpp"
 #include "scene_run/scene_run.hpp"
 
@@ -49,7 +50,17 @@ class Simulation {
   // is neither.
   StepFigures step(const std::map<std::string, double>& levels);
   // Back to the settled state at time 0, all levels 0; the run that follows repeats the first.
+  // A run file being written gets that state as its next frame and counts it in "resets".
   void reset();
+
+  // Writes the run from here on into a run file at path (docs/run_file.md, as sim_batch's): the
+  // current state as its first frame, then a frame per step. A file already being written is
+  // closed first. Throws run_file::RunFileError naming the file when it cannot be created.
+  void open_run_file(const std::string& path);
+  // Marks the file being written "completed" (or "failed: <why>" after a step that did not
+  // converge) and closes it; nothing when none is open. Also done by the destructor.
+  void close_run_file();
+  const std::string& run_file_path() const { return log_path_; }
 
   // The state after the last step.
   double time() const { return run_->time(); }  // s
@@ -72,9 +83,14 @@ class Simulation {
 
  private:
   static Eigen::MatrixX3d by_node(const fem::Vector& v);
+  void write_frame(const run_file::SolverFigures& figures);
   scene::Scene scene_;
   std::unique_ptr<scene_run::SceneRun> run_;
   std::vector<std::string> muscle_names_;
+  std::unique_ptr<run_file::RunFileQueue> log_;  // written on its own thread
+  std::string log_path_;
+  std::string failure_;  // why the last step failed, for the run file's status
+  int resets_ = 0;
 };
 
 }  // namespace tongue::python

@@ -104,3 +104,35 @@ def test_bad_input_raises_with_the_library_s_message(sim):
         sim.step({"XX": 0.1})
     with pytest.raises(RuntimeError, match="missing.yaml"):
         tongue.Simulation(os.path.join(PROJECT, "missing.yaml"))
+
+
+def test_run_file_holds_what_sim_batch_writes(sim, tmp_path):
+    batch = tmp_path / "batch.h5"
+    subprocess.run([os.environ["SIM_BATCH"], SG_3N, "--quiet", "--output", str(batch)],
+                   check=True, capture_output=True)
+    sim.reset()
+    sim.run_file(str(tmp_path / "python.h5"))
+    assert sim.run_file_path == str(tmp_path / "python.h5")
+    levels = sg_levels(sim, 3.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # the material's, tested above
+        for _ in range(30):
+            sim.step(levels)
+    sim.reset()  # logged as a frame at t = 0 and counted
+    sim.close_run_file()
+    run, reference = tongue.RunFile(str(tmp_path / "python.h5")), tongue.RunFile(str(batch))
+    assert run.status == "completed"
+    for name in ["/positions", "/time", "/activations", "/muscles/length", "/muscles/velocity"]:
+        assert np.array_equal(run.dataset(name)[:31], reference.dataset(name)), name
+    assert run.time[31] == 0.0 and np.array_equal(run.positions[31], run.positions[0])
+    assert np.array_equal(run.rest_positions, reference.rest_positions)
+    assert run.dataset("/solver/iterations")[1:31].min() >= 1
+    with h5py.File(tmp_path / "python.h5", "r") as f:
+        assert f.attrs["resets"] in ("1", b"1")
+
+
+def test_a_run_file_that_cannot_be_created_is_named(sim, tmp_path):
+    blocker = tmp_path / "file"
+    blocker.write_text("")
+    with pytest.raises(RuntimeError, match=str(blocker)):
+        sim.run_file(str(blocker / "run.h5"))
