@@ -132,12 +132,12 @@ public final class StepController {
   public static void main(String[] args) {
     int status;
     try {
-      status = new StepController().run(args);
+      status = new StepController().drive(args);
     } catch (Failure failure) {
       System.err.println(PROG + ": " + failure.getMessage());
       status = failure.status;
-    } catch (IOException | RuntimeException error) {
-      System.err.println(PROG + ": LCM failed: " + error);
+    } catch (IOException | RuntimeException cause) {
+      System.err.println(PROG + ": LCM failed: " + cause);
       status = EXIT_ERROR;
     }
     System.exit(status);
@@ -222,7 +222,7 @@ public final class StepController {
       String value = paired ? pair.group(2) : null;
       boolean takesValue = Arrays.asList("--lcm-url", "--prefix", "--max-steps", "--timeout-ms")
                                .contains(key);
-      if (takesValue && value == null) {
+      if (takesValue && !paired) {
         i = i + 1;
         if (i >= args.length) throw usageError(key + " needs a value");
         value = args[i];
@@ -284,8 +284,8 @@ public final class StepController {
       try {
         // The constructor takes String... (providers): MATLAB passes a Java array, as here.
         buses.put(url, new LCM(new String[] {url}));
-      } catch (IOException | RuntimeException error) {
-        throw new Failure(EXIT_ERROR, "cannot open the LCM bus at '" + url + "': " + error);
+      } catch (IOException | RuntimeException cause) {
+        throw new Failure(EXIT_ERROR, "cannot open the LCM bus at '" + url + "': " + cause);
       }
     }
     return buses.get(url);
@@ -318,9 +318,9 @@ public final class StepController {
     if (data.length <= limit) {
       try {
         return decoder.decode(data);
-      } catch (IOException | RuntimeException | OutOfMemoryError error) {
+      } catch (IOException | RuntimeException | OutOfMemoryError cause) {
         // OutOfMemoryError: a forged array count asks for more than the heap; nothing was taken.
-        reason = error.toString();
+        reason = cause.toString();
       }
     }
     rejected = rejected + 1;
@@ -365,7 +365,7 @@ public final class StepController {
     }
   }
 
-  int run(String[] args) throws IOException {
+  int drive(String[] args) throws IOException {
     options = parseArguments(args);
     if (options == null) return EXIT_OK;
     List<String> names = namedMuscles(options.entries);
@@ -434,10 +434,11 @@ public final class StepController {
           msg.step = state.step + 1;
           msg.num_muscles = names.size();
           msg.names = names.toArray(new String[0]);
-          msg.levels = new double[names.size()];
+          double[] levels = new double[names.size()];
           for (int i = 0; i < names.size(); ++i) {
-            msg.levels[i] = levelAt(options.entries, names.get(i), state.time, dt);
+            levels[i] = levelAt(options.entries, names.get(i), state.time, dt);
           }
+          msg.levels = levels;
           msg.sender = sender;
           sentMsg = msg;
           sentBytes = encode(msg);

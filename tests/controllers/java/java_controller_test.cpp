@@ -54,14 +54,16 @@ class JavaController : public testing::TempDirTest {
     return java;
   }
   std::unique_ptr<ChildProcess> start_server(const std::string& url, const std::string& run,
-                                             int steps = kSteps) {
-    const std::vector<std::string> args{(dir_ / "scene.yaml").string(),
-                                        "--lcm-url",
-                                        url,
-                                        "--output",
-                                        (dir_ / (run + ".h5")).string(),
-                                        "--max-steps",
-                                        std::to_string(steps)};
+                                             int steps = kSteps,
+                                             const std::vector<std::string>& extra = {}) {
+    std::vector<std::string> args{(dir_ / "scene.yaml").string(),
+                                  "--lcm-url",
+                                  url,
+                                  "--output",
+                                  (dir_ / (run + ".h5")).string(),
+                                  "--max-steps",
+                                  std::to_string(steps)};
+    args.insert(args.end(), extra.begin(), extra.end());
     auto server = std::make_unique<ChildProcess>(SIM_SERVER_PATH, args, dir_, run);
     EXPECT_TRUE(server->started());
     return server;
@@ -101,15 +103,17 @@ std::vector<double> logged(const std::vector<Schedule>& schedules) {
 }
 
 // The schedule of LuaController.DrivesTheServerAsTheCppDriverDoes, so that the Java run is the
-// Lua run too.
+// Lua run too. One port for both runs, one after the other: the Java run's server has exited
+// before the C++ driver subscribes, and nothing else is on the port.
 TEST_F(JavaController, DrivesTheServerAsTheCppDriverDoes) {
   write("scene.yaml", testing::kBoxScene);
   // dt = 2 ms; step k + 1 starts at t = 2k ms. flexor=0.3@0:0.01 holds for the steps starting at
   // 0 .. 8 ms (1-5), flexor=0.8@0.006:0.016 for those at 6 .. 14 ms (4-8) and, being later on
   // the command line, wins where both hold; 0 from step 9 on.
   const Schedule flexor{0.3, 0.3, 0.3, 0.8, 0.8, 0.8, 0.8, 0.8, 0.0, 0.0, 0.0, 0.0};
+  const int port = 7980;
   {
-    const std::string url = bus_url(7980);
+    const std::string url = bus_url(port);
     auto java = start_java(
         url, "java",
         {"--max-steps", std::to_string(kSteps), "flexor=0.3@0:0.01", "flexor=0.8@0.006:0.016"});
@@ -120,7 +124,7 @@ TEST_F(JavaController, DrivesTheServerAsTheCppDriverDoes) {
               std::string::npos)
         << java->stderr_text();
   }
-  run_cpp_driver(7981, {"flexor"}, {flexor});
+  run_cpp_driver(port, {"flexor"}, {flexor});
   testing::expect_same_results(dir_ / "java_run.h5", dir_ / "cpp.h5", kSteps + 1);
   const testing::RunFile run(dir_ / "java_run.h5");
   EXPECT_EQ(run.doubles("/activations"), logged({flexor}));
@@ -157,6 +161,28 @@ TEST_F(JavaController, StartedAfterTheServerItAsksForTheModel) {
                                testing::run_state_datasets());
 }
 
+// Two Java controllers naming the same muscle with --controllers 2: the second message for
+// step 1 is rejected, and its sender reads the server's rejection notice and exits 5 with the
+// reason (the other is left waiting; the server stops by its silence rule).
+TEST_F(JavaController, TheOneRejectedForAnOverlapIsToldWhy) {
+  write("scene.yaml", testing::kTwoMuscleBoxScene);
+  const std::string url = bus_url(7981);
+  auto first = start_java(url, "first", {"flexor=0.5"});
+  auto second = start_java(url, "second", {"flexor=0.7"});
+  auto server = start_server(
+      url, "run", kSteps, {"--controllers", "2", "--timeout-ms", "3000", "--on-silence", "stop"});
+  EXPECT_EQ(server->wait_exit(kRunWaitMs), 3) << server->stderr_text();
+  // The rejected one has said so by now; the other waits until its own timeout.
+  const std::string told = "the server rejected its activation for step 1";
+  ChildProcess& rejected = first->stderr_text().find(told) != std::string::npos ? *first : *second;
+  ASSERT_EQ(rejected.wait_exit(kRunWaitMs), 5) << first->stderr_text() << second->stderr_text();
+  EXPECT_NE(rejected.stderr_text().find(told + " (step_controller:"), std::string::npos)
+      << rejected.stderr_text();
+  EXPECT_NE(rejected.stderr_text().find("overlapping activation: \"flexor\" is already set"),
+            std::string::npos)
+      << rejected.stderr_text();
+}
+
 // On the built-in tongue: the paper's styloglossus experiment (scenes/tongue_sg_3n.yaml, settled,
 // SG at 3 N = level 3 / 24 of both halves from t = 0), cut to 5 steps of 4 ms, run by sim_batch
 // from the scene's schedule and by sim_server under the Java controller: the same positions, bit
@@ -182,9 +208,9 @@ TEST_F(JavaController, ReproducesSimBatchOnTheTongue) {
 
 // No server: the controller asks for the model, then gives up with the timeout's status, 4.
 TEST_F(JavaController, NoServerIsATimeout) {
-  const testing::RunResult r = testing::run_command(
-      JAVA_STEP_CONTROLLER_PATH, "--lcm-url '" + bus_url(7984) + "' --timeout-ms 2000 flexor=1",
-      dir_);
+  const testing::RunResult r =
+      testing::run_command(JAVA_STEP_CONTROLLER_PATH,
+                           "--lcm-url '" + bus_url(7984) + "' --timeout-ms 2000 flexor=1", dir_);
   EXPECT_EQ(r.exit_code, 4) << r.err;
   EXPECT_NE(r.err.find("step_controller: nothing from the server on TONGUE_* for 2000 ms while "
                        "waiting for the model"),
