@@ -9,6 +9,7 @@ packages=(
   libsuitesparse-dev libopenblas-dev  # CHOLMOD with an optimized BLAS
   liblcm-dev liblcm-bin            # LCM 1.3: library, lcm-gen, lcm-logger, lcm-logplayer
   liblcm-lua lua5.2                # controllers/lua: LCM's Lua module is built for Lua 5.2
+  liblcm-java default-jdk-headless  # controllers/java, matlab: lcm.jar; javac --release 8, jar
   libhdf5-dev                      # HDF5 1.10, C and C++
   libyaml-cpp-dev                  # scene files
   libcgal-dev libassimp-dev        # obstacles: spatial index (AABB tree), OBJ and STL files

@@ -16,7 +16,8 @@ inline constexpr std::string_view kDefaultChannelPrefix = "TONGUE_";
 // The bus when none is named: multicast on the loopback host only (ttl 0: never leaves it).
 // A 4 MB socket receive buffer (capped by the kernel at net.core.rmem_max) holds a whole model
 // or state message of a refined tongue: fragments beyond the buffer are dropped unseen.
-// The one definition: controllers/lua/step_controller.lua repeats it (Lua cannot include it).
+// The one definition: the Lua, Java and MATLAB step controllers (controllers/lua, java, matlab)
+// repeat it, as they cannot include it.
 inline constexpr std::string_view kDefaultLcmUrl =
     "udpm://239.255.76.67:7667?ttl=0&recv_buf_size=4194304";
 
