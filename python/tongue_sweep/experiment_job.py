@@ -40,13 +40,15 @@ def set_path(doc, dotted, value):
     part, which may be a new key."""
     parts = dotted.split(".")
     node = doc
-    for part in parts[:-1]:
-        node = node[int(part)] if isinstance(node, list) else node[part]
-    last = parts[-1]
-    if isinstance(node, list):
-        node[int(last)] = value
-    else:
-        node[last] = value
+    try:
+        for part in parts[:-1]:
+            node = node[int(part)] if isinstance(node, list) else node[part]
+        if isinstance(node, list):
+            node[int(parts[-1])] = value
+        else:
+            node[parts[-1]] = value
+    except (KeyError, IndexError, ValueError, TypeError):
+        raise ValueError(f"the plan has no '{dotted}'") from None
 
 
 def rewrite_experiment(experiment, params, folder):
@@ -61,6 +63,9 @@ def rewrite_experiment(experiment, params, folder):
     doc["scene"] = absolute(doc["scene"])
     if "duration_s" in params:
         doc["duration"] = float(params["duration_s"])
+        if "plots" in doc and "times" in (doc["plots"] or {}):
+            # The runner refuses snapshot times past the end (no plots are drawn anyway).
+            doc["plots"]["times"] = [t for t in doc["plots"]["times"] if t <= doc["duration"]]
     changes = {k[len("plan."):]: v for k, v in params.items() if k.startswith("plan.")}
     planned = False
     for c in doc["controllers"]:
