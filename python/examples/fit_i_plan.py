@@ -49,7 +49,8 @@ class Evaluations:
     def __init__(self, sweep):
         self.sweep = sweep
         self.cache = {}
-        self.runs = 0
+        self.runs = 0  # points evaluated
+        self.on_record = 0  # of them, found done in the output folder
 
     def postures(self, points):
         todo = [p for p in points if tuple(p) not in self.cache]
@@ -57,6 +58,7 @@ class Evaluations:
             for p, row in zip(todo, self.sweep.run(runs_for(todo))):
                 self.cache[tuple(p)] = posture_mm(row)
             self.runs += len(todo)
+            self.on_record += self.sweep.skipped
         return [self.cache[tuple(p)] for p in points]
 
 
@@ -103,7 +105,8 @@ def main():
           f"{args.start[1]:+.2f})")
     print(f"landmark error: RMS {np.sqrt(np.mean(error ** 2)):.3f} mm, largest "
           f"{np.abs(error).max():.3f} mm; {fit.nfev} residual and {fit.njev} Jacobian "
-          f"evaluations, {evaluations.runs} runs, {wall:.1f} s wall; {fit.message}")
+          f"evaluations, {evaluations.runs} runs ({evaluations.on_record} of them on record), "
+          f"{wall:.1f} s wall; {fit.message}")
 
 
 if __name__ == "__main__":
