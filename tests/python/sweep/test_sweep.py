@@ -7,6 +7,7 @@ import subprocess
 import sys
 import time
 
+import h5py
 import numpy as np
 
 import tongue
@@ -135,7 +136,11 @@ def test_a_failing_run_lands_in_its_row_and_is_tried_again(client, tmp_path):
     assert rows[0]["error"] == "" and rows[0]["tip_dy_m"] != 0.0
     with open(tmp_path / "results.csv") as f:
         assert "ValueError" in f.read()
-    again = Sweep(tmp_path, client)
+    again = Sweep(tmp_path, client, hdf5=True)
     rows = again.run(runs)
     assert again.skipped == 2  # the failed ones are run again, and fail again
+    with h5py.File(tmp_path / "results.h5", "r") as f:
+        assert list(f.attrs["columns"])[:4] == ["key", "kind", "status", "error"]
+        assert [s.decode() for s in f["status"][:]] == [r["status"] for r in rows]
+        assert np.isnan(f["tip_dy_m"][1]) and f["tip_dy_m"][0] == rows[0]["tip_dy_m"]
     assert [r["status"] for r in rows] == ["ok", "failed", "failed", "failed", "ok"]
