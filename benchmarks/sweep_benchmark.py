@@ -5,7 +5,8 @@
 repeat into fresh output folders. Prints the medians over the repeats: sequential wall time,
 sweep wall time, their ratio; the cluster's start-up, paid once per sweep command, apart. For
 what the machine allows, the same runs also go to a plain multiprocessing pool of as many
-processes (no dask, no rows written): the floor a sweep could reach here.
+processes (no dask, no rows written): the floor a sweep could reach here; and a plain CPU loop
+done twice at once against once, in the same pool: what two busy processes get of this machine.
 
 Usage: PYTHONPATH=build/python:python /usr/bin/python3 benchmarks/sweep_benchmark.py
            [--runs 40] [--duration 0.2] [--workers 2] [--repeats 3]
@@ -49,6 +50,23 @@ def warm_up(_):
     import tongue  # noqa: F401
 
 
+def busy_loop(n):
+    x = 0
+    for i in range(n):
+        x += i
+    return x
+
+
+def machine_pair_factor(pool, n=10_000_000):
+    """Wall time of two CPU loops at once over twice one alone: 0.5 with two free cores."""
+    start = time.perf_counter()
+    pool.map(busy_loop, [n], chunksize=1)
+    one = time.perf_counter() - start
+    start = time.perf_counter()
+    pool.map(busy_loop, [n, n], chunksize=1)
+    return (time.perf_counter() - start) / (2 * one)
+
+
 def timed_pool(pool, runs):
     start = time.perf_counter()
     rows = pool.map(execute, [r.params for r in runs], chunksize=1)
@@ -71,7 +89,7 @@ def main():
     with dask_client(workers=args.workers) as client:
         client.wait_for_workers(args.workers)
         startup = time.perf_counter() - start
-        sequential, parallel, floor = [], [], []
+        sequential, parallel, floor, pair = [], [], [], []
         # One BLAS thread per process, as dask's workers have.
         os.environ.update(OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
         with tempfile.TemporaryDirectory() as tmp, \
@@ -82,17 +100,20 @@ def main():
                 sequential.append(timed_sweep(None, runs, os.path.join(tmp, f"seq{k}")))
                 parallel.append(timed_sweep(client, runs, os.path.join(tmp, f"par{k}")))
                 floor.append(timed_pool(pool, runs))
+                pair.append(machine_pair_factor(pool))
                 print(f"repeat {k + 1}: sequential {sequential[-1]:.2f} s, "
                       f"sweep on {args.workers} workers {parallel[-1]:.2f} s "
                       f"({parallel[-1] / sequential[-1]:.2f}x), plain pool {floor[-1]:.2f} s "
-                      f"({floor[-1] / sequential[-1]:.2f}x)", flush=True)
+                      f"({floor[-1] / sequential[-1]:.2f}x), two CPU loops at once {pair[-1]:.2f}x",
+                      flush=True)
     seq, par = statistics.median(sequential), statistics.median(parallel)
     low = statistics.median(floor)
     print(f"{args.runs} runs of {args.duration} s simulated, medians of {args.repeats}: "
           f"sequential {seq:.2f} s ({1e3 * seq / args.runs:.0f} ms a run), sweep on "
           f"{args.workers} workers {par:.2f} s: {par / seq:.2f}x the sequential time "
-          f"(plain pool {low:.2f} s, {low / seq:.2f}x); cluster start-up {startup:.2f} s "
-          f"(once per command)")
+          f"(plain pool {low:.2f} s, {low / seq:.2f}x; two CPU loops at once "
+          f"{statistics.median(pair):.2f}x one after the other); cluster start-up "
+          f"{startup:.2f} s (once per command)")
 
 
 if __name__ == "__main__":
