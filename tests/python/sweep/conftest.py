@@ -25,3 +25,8 @@ def repeatable(rows):
 def client():
     with dask_client(workers=2) as c:
         yield c
+
+
+def pytest_configure(config):
+    # Debian's tornado warns about its own event-loop call inside distributed; not ours to fix.
+    config.addinivalue_line("filterwarnings", "ignore:make_current is deprecated:DeprecationWarning")
