@@ -18,6 +18,7 @@ packages=(
   python3 python3-h5py python3-numpy  # reading run logs back in tests and scripts
   python3-matplotlib               # scripts/draw_midsagittal.py, scripts/plot_run.py
   pybind11-dev python3-dev python3-pytest  # python/: the simulator as a Python module, its tests
+  python3-distributed python3-scipy  # python/tongue_sweep: sweeps on dask.distributed, fits with scipy.optimize
 )
 
 missing=()

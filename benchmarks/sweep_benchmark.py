@@ -1,0 +1,120 @@
+#!/usr/bin/python3
+"""A sweep on a local dask cluster against the same runs one after the other in this process:
+40 runs of the SG 3 N scene (scenes/tongue_sg_3n.yaml) for 0.2 s simulated each (50 steps of
+4 ms), SG and GGp levels varied, both through tongue_sweep.Sweep (rows written, table made), each
+repeat into fresh output folders. Prints the medians over the repeats: sequential wall time,
+sweep wall time, their ratio; the cluster's start-up, paid once per sweep command, apart. For
+what the machine allows, the same runs also go to a plain multiprocessing pool of as many
+processes (no dask, no rows written): the floor a sweep could reach here; and a plain CPU loop
+done twice at once against once, in the same pool: what two busy processes get of this machine.
+
+Usage: PYTHONPATH=build/python:python /usr/bin/python3 benchmarks/sweep_benchmark.py
+           [--runs 40] [--duration 0.2] [--workers 2] [--repeats 3]
+"""
+import argparse
+import multiprocessing
+import os
+import statistics
+import sys
+import tempfile
+import time
+
+import numpy as np
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "python"))
+
+from tongue_sweep import Sweep, dask_client, execute, make_runs  # noqa: E402
+
+SCENE = os.path.normpath(os.path.join(HERE, "..", "scenes", "tongue_sg_3n.yaml"))
+
+
+def the_runs(count, duration):
+    sg = np.linspace(0.02, 0.125, (count + 1) // 2)
+    params = [{"scene": SCENE, "duration_s": duration, "levels.SG": round(float(s), 6),
+               "levels.GGp": ggp} for s in sg for ggp in (0.0, 0.05)]
+    return make_runs(params[:count])
+
+
+def timed_sweep(client, runs, folder):
+    start = time.perf_counter()
+    rows = Sweep(folder, client).run(runs)
+    wall = time.perf_counter() - start
+    failed = [r for r in rows if r["status"] != "ok"]
+    if failed:
+        raise RuntimeError(f"{len(failed)} runs failed, first: {failed[0]['error']}")
+    return wall
+
+
+def warm_up(_):
+    import tongue  # noqa: F401
+
+
+def busy_loop(n):
+    x = 0
+    for i in range(n):
+        x += i
+    return x
+
+
+def machine_pair_factor(pool, n=10_000_000):
+    """Wall time of two CPU loops at once over twice one alone: 0.5 with two free cores."""
+    start = time.perf_counter()
+    pool.map(busy_loop, [n], chunksize=1)
+    one = time.perf_counter() - start
+    start = time.perf_counter()
+    pool.map(busy_loop, [n, n], chunksize=1)
+    return (time.perf_counter() - start) / (2 * one)
+
+
+def timed_pool(pool, runs):
+    start = time.perf_counter()
+    rows = pool.map(execute, [r.params for r in runs], chunksize=1)
+    wall = time.perf_counter() - start
+    if any(r["status"] != "ok" for r in rows):
+        raise RuntimeError("a run failed in the pool")
+    return wall
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--runs", type=int, default=40)
+    parser.add_argument("--duration", type=float, default=0.2, help="simulated s per run")
+    parser.add_argument("--workers", type=int, default=2)
+    parser.add_argument("--repeats", type=int, default=3)
+    args = parser.parse_args()
+    runs = the_runs(args.runs, args.duration)
+
+    start = time.perf_counter()
+    with dask_client(workers=args.workers) as client:
+        client.wait_for_workers(args.workers)
+        startup = time.perf_counter() - start
+        sequential, parallel, floor, pair = [], [], [], []
+        # One BLAS thread per process, as dask's workers have.
+        os.environ.update(OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
+        with tempfile.TemporaryDirectory() as tmp, \
+                multiprocessing.get_context("spawn").Pool(args.workers) as pool:
+            pool.map(warm_up, range(args.workers))
+            for k in range(args.repeats):
+                # Interleaved, so that all see the same load from others on the machine.
+                sequential.append(timed_sweep(None, runs, os.path.join(tmp, f"seq{k}")))
+                parallel.append(timed_sweep(client, runs, os.path.join(tmp, f"par{k}")))
+                floor.append(timed_pool(pool, runs))
+                pair.append(machine_pair_factor(pool))
+                print(f"repeat {k + 1}: sequential {sequential[-1]:.2f} s, "
+                      f"sweep on {args.workers} workers {parallel[-1]:.2f} s "
+                      f"({parallel[-1] / sequential[-1]:.2f}x), plain pool {floor[-1]:.2f} s "
+                      f"({floor[-1] / sequential[-1]:.2f}x), two CPU loops at once {pair[-1]:.2f}x",
+                      flush=True)
+    seq, par = statistics.median(sequential), statistics.median(parallel)
+    low = statistics.median(floor)
+    print(f"{args.runs} runs of {args.duration} s simulated, medians of {args.repeats}: "
+          f"sequential {seq:.2f} s ({1e3 * seq / args.runs:.0f} ms a run), sweep on "
+          f"{args.workers} workers {par:.2f} s: {par / seq:.2f}x the sequential time "
+          f"(plain pool {low:.2f} s, {low / seq:.2f}x; two CPU loops at once "
+          f"{statistics.median(pair):.2f}x one after the other); cluster start-up "
+          f"{startup:.2f} s (once per command)")
+
+
+if __name__ == "__main__":
+    main()

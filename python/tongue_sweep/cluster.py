@@ -1,0 +1,43 @@
+"""A dask client: a LocalCluster of worker processes with one thread each (a step holds a core;
+a thread more per process would only contend), or an existing scheduler."""
+import contextlib
+import logging
+import os
+import sys
+
+
+def _export_python_path():
+    """LocalCluster's workers must import tongue and tongue_sweep as this process does."""
+    here = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+    paths = [here]
+    try:
+        import tongue
+        paths.append(os.path.dirname(os.path.abspath(tongue.__file__)))
+    except ImportError:
+        pass
+    current = [p for p in os.environ.get("PYTHONPATH", "").split(os.pathsep) if p]
+    os.environ["PYTHONPATH"] = os.pathsep.join(paths + [p for p in current if p not in paths])
+    for p in paths:
+        if p not in sys.path:
+            sys.path.insert(0, p)
+
+
+@contextlib.contextmanager
+def dask_client(scheduler=None, workers=2):
+    from distributed import Client, LocalCluster
+    if scheduler:
+        client = Client(scheduler)
+        try:
+            yield client
+        finally:
+            client.close()
+        return
+    _export_python_path()
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
+                           dashboard_address=None, silence_logs=logging.CRITICAL)
+    client = Client(cluster)
+    try:
+        yield client
+    finally:
+        client.close()
+        cluster.close()
