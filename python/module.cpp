@@ -17,8 +17,15 @@ using tongue::python::StepFigures;
 
 namespace {
 
-// Runs a step without the GIL, then raises its warnings as Python RuntimeWarnings (they need
-// the GIL), so that a loss of the material's stability is not left unsaid.
+// The library's warnings as Python RuntimeWarnings (they need the GIL), so that a loss of the
+// material's stability is not left unsaid.
+const std::vector<std::string>& warn(const std::vector<std::string>& warnings) {
+  for (const std::string& w : warnings)
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, w.c_str(), 1) != 0) throw py::error_already_set();
+  return warnings;
+}
+
+// Runs a step without the GIL, then raises its warnings.
 template <typename Levels>
 StepFigures step(Simulation& simulation, const Levels& levels) {
   StepFigures figures;
@@ -26,8 +33,7 @@ StepFigures step(Simulation& simulation, const Levels& levels) {
     py::gil_scoped_release release;
     figures = simulation.step(levels);
   }
-  for (const std::string& w : figures.warnings)
-    if (PyErr_WarnEx(PyExc_RuntimeWarning, w.c_str(), 1) != 0) throw py::error_already_set();
+  warn(figures.warnings);
   return figures;
 }
 
@@ -80,9 +86,16 @@ PYBIND11_MODULE(tongue, m) {
       .def("step", &step<std::map<std::string, double>>, py::arg("levels"),
            "One step of dt with the levels of the muscles or groups named ({'SG': 0.125} sets "
            "SG_left and SG_right); the others keep the last step's levels.")
-      .def("reset", &Simulation::reset,
-           "Back to the settled state at time 0 with all levels 0; the run that follows repeats "
-           "the first one exactly.")
+      .def(
+          "reset", [](Simulation& s) { return warn(s.reset()); },
+          "Back to the settled state at time 0 with all levels 0; the run that follows repeats "
+          "the first one exactly, its warnings too. Returns finish_checks() of the run that "
+          "ended (also issued as RuntimeWarning).")
+      .def(
+          "finish_checks", [](Simulation& s) { return warn(s.finish_checks()); },
+          "The warnings of the checks still under way on the last state (the material's loss "
+          "of strong ellipticity is found off the step's path and reported with the next step "
+          "otherwise), also issued as RuntimeWarning: call it at the end of a run.")
       .def("run_file", &Simulation::open_run_file, py::arg("path"),
            "Writes the run from here on into a run file at path (as sim_batch's, readable with "
            "RunFile): the current state as its first frame, then a frame per step; a reset writes "

@@ -8,6 +8,13 @@
 #include "scene_run/scene_run_file.hpp"
 
 namespace tongue::python {
+namespace {
+
+std::string ellipticity_warning(const scene_run::EllipticityFinding& found) {
+  return "at t = " + std::to_string(found.time) + " s " + found.warning;
+}
+
+}  // namespace
 
 Simulation::Simulation(const std::string& scene_path) : scene_(scene::read_scene(scene_path)) {
   run_ = std::make_unique<scene_run::SceneRun>(scene_, scene::build_scene(scene_));
@@ -57,12 +64,13 @@ StepFigures Simulation::step(const fem::Vector& levels) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (!r.report.converged) {
-    failure_ = "step " + std::to_string(step_count() + 1) + " did not converge: " + r.report.message;
+    failure_ =
+        "step " + std::to_string(step_count() + 1) + " did not converge: " + r.report.message;
     throw std::runtime_error(failure_);
   }
   failure_.clear();
-  write_frame({r.report.iterations, r.report.final_residual, r.report.wall_seconds,
-               r.report.cuts, run_->reduced_correction()});
+  write_frame({r.report.iterations, r.report.final_residual, r.report.wall_seconds, r.report.cuts,
+               run_->reduced_correction()});
   StepFigures f;
   f.time = r.report.time;
   f.iterations = r.report.iterations;
@@ -71,9 +79,7 @@ StepFigures Simulation::step(const fem::Vector& levels) {
   f.error_estimate = r.report.error_estimate;
   f.wall_seconds = seconds;
   f.held = r.report.held;
-  if (r.ellipticity_loss)
-    f.warnings.push_back("at t = " + std::to_string(r.ellipticity_loss->time) + " s " +
-                         r.ellipticity_loss->warning);
+  if (r.ellipticity_loss) f.warnings.push_back(ellipticity_warning(*r.ellipticity_loss));
   if (r.reduced_warning) f.warnings.push_back(*r.reduced_warning);
   return f;
 }
@@ -96,11 +102,19 @@ StepFigures Simulation::step(const std::map<std::string, double>& levels) {
   return step(all);
 }
 
-void Simulation::reset() {
+std::vector<std::string> Simulation::finish_checks() {
+  std::vector<std::string> warnings;
+  if (const auto last = run_->finish_checks()) warnings.push_back(ellipticity_warning(*last));
+  return warnings;
+}
+
+std::vector<std::string> Simulation::reset() {
+  std::vector<std::string> warnings = finish_checks();
   run_->restart();
-  if (!log_) return;
+  if (!log_) return warnings;
   log_->set_attribute("resets", std::to_string(++resets_));
   write_frame({});
+  return warnings;
 }
 
 Eigen::MatrixX3d Simulation::by_node(const fem::Vector& v) {

@@ -49,9 +49,13 @@ class Simulation {
   // the others keep the levels of the last step. Throws std::invalid_argument for a name that
   // is neither.
   StepFigures step(const std::map<std::string, double>& levels);
-  // Back to the settled state at time 0, all levels 0; the run that follows repeats the first.
-  // A run file being written gets that state as its next frame and counts it in "resets".
-  void reset();
+  // The warnings of the checks still under way on the last state: the material's loss of strong
+  // ellipticity is found off the step's critical path and comes with the next step otherwise.
+  std::vector<std::string> finish_checks();
+  // Back to the settled state at time 0, all levels 0; the run that follows repeats the first,
+  // its warnings too. Returns the ended run's finish_checks(). A run file being written gets the
+  // settled state as its next frame and counts it in "resets".
+  std::vector<std::string> reset();
 
   // Writes the run from here on into a run file at path (docs/run_file.md, as sim_batch's): the
   // current state as its first frame, then a frame per step. A file already being written is

@@ -11,9 +11,7 @@ import numpy as np
 from .landmarks import LandmarkTracker
 
 # One Simulation per scene and thread, reused with reset(): building and settling a scene costs
-# about as much as 100 steps, and a reset run is the fresh run bit for bit. But a run object
-# reports a loss of ellipticity once in its life, so one that has warned is dropped: the next
-# run gets a fresh one and its own warning.
+# about as much as 100 steps, and a reset run is the fresh run bit for bit, its warnings too.
 _cache = threading.local()
 
 
@@ -61,8 +59,7 @@ def run_simulation(params):
             totals["physics_wall_s"] += figures.wall_seconds
             notes.extend(figures.warnings)
             tracker.add(sim.positions)
-    if notes:
-        del _cache.sims[params["scene"]]
+        notes.extend(sim.finish_checks())  # the last state's, which no step reports
     return {"steps": steps, "simulated_s": float(sim.time), **totals,
             "warnings": len(notes), "first_warning": notes[0] if notes else "",
             **tracker.figures()}

@@ -38,6 +38,12 @@ std::optional<EllipticityFinding> EllipticityWatch::collect() {
   return wait_and_take(lock);
 }
 
+void EllipticityWatch::rearm() {
+  std::unique_lock lock(mutex_);
+  changed_.wait(lock, [&] { return !busy_; });
+  monitor_.reset();
+}
+
 std::optional<EllipticityFinding> EllipticityWatch::wait_and_take(
     std::unique_lock<std::mutex>& lock) {
   changed_.wait(lock, [&] { return !busy_; });

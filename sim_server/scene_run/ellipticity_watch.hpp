@@ -40,6 +40,9 @@ class EllipticityWatch {
   std::optional<EllipticityFinding> check(const fem::Vector& u, std::int64_t step, double time);
   // Waits for the check under way and returns its finding, if any.
   std::optional<EllipticityFinding> collect();
+  // For a new run: waits for the check under way (its finding, if any, is still delivered by the
+  // next call) and makes the monitor report a loss again.
+  void rearm();
 
  private:
   void run();  // the worker

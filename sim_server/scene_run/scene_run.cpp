@@ -63,6 +63,7 @@ void SceneRun::restart(const fem::Vector& first_levels) {
   if (built_.muscles) built_.muscles->set_activations(levels_);
   accept();
   step_ = 0;
+  ellipticity_.rearm();
   reduced_warned_ = false;
   reduced_correction_ = 0.0;
 }

@@ -45,10 +45,11 @@ struct StepResult {
   // Activations, lengths [m] and velocities [m/s] of the muscles at the new state (empty vectors
   // without muscles); computed once per step for every consumer (state message, run file).
   run_file::MuscleFrame muscles;
-  // The first loss of strong ellipticity of the material, reported once per run (a restart
-  // does not report it again). It is checked off the step's critical path (EllipticityWatch),
-  // so it comes one step late: the result of step k + 1 (converged or not) reports a loss in
-  // the state of step k, and finish_checks() one in the last state. The finding names its step.
+  // The first loss of strong ellipticity of the material, reported once per run (again after a
+  // restart, at the same step when the run repeats). It is checked off the step's critical path
+  // (EllipticityWatch), so it comes one step late: the result of step k + 1 (converged or not)
+  // reports a loss in the state of step k, and finish_checks() one in the last state. The finding
+  // names its step.
   std::optional<EllipticityFinding> ellipticity_loss;
   // With a reduced model, on the steps it is checked: the largest nodal correction the full
   // model would make to the new state [m] (reduced::ReducedIntegrator::full_model_correction);
@@ -77,9 +78,10 @@ class SceneRun {
   // Back to the initial state (settled or rest), at rest, time 0, step 0, all activations 0.
   // Nothing that steers a run carries over (factorizations of the step, previous dt; a reduced
   // model keeps only what it made of the same initial state), so a run after a restart repeats
-  // the first one exactly; only a loss of ellipticity found in the last state before it is still
-  // reported, by the next step (its finding names its step). The first step's factor is formed
-  // here under first_levels (empty: all 0; the acceleration is taken with all 0 regardless).
+  // the first one exactly, its loss of ellipticity reported again; one found in the last state
+  // before it is still reported, by the next step (its finding names its step), unless
+  // finish_checks() took it. The first step's factor is formed here under first_levels (empty:
+  // all 0; the acceleration is taken with all 0 regardless).
   // Throws std::invalid_argument for first_levels of the wrong size.
   void restart(const fem::Vector& first_levels = {});
 

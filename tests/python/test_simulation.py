@@ -50,6 +50,21 @@ def test_steps_the_scene_as_sim_batch_does_bit_for_bit(sim, tmp_path):
     assert any("strongly elliptic" in str(w.message) for w in caught)
 
 
+def test_a_reset_run_warns_again_at_the_same_step(sim):
+    # SG 3 N strains the paper's law beyond strong ellipticity within its 30 steps: every run
+    # after a reset says so again, at the same state, and finish_checks() takes what the last
+    # state's check found.
+    def run():
+        sim.reset()
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)
+            said = [w for _ in range(30) for w in sim.step(sg_levels(sim, 3.0)).warnings]
+            return said + sim.finish_checks()
+    first = run()
+    assert len(first) == 1 and "strongly elliptic" in first[0]
+    assert run() == first
+
+
 def test_named_levels_set_groups_and_keep_the_rest(sim):
     sim.reset()
     sim.step({"SG": 0.1, "GGp_left": 0.2})

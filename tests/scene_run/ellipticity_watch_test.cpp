@@ -103,6 +103,37 @@ TEST(EllipticityWatch, CollectGivesTheLastStatesFinding) {
   EXPECT_FALSE(watch.collect());  // reported once per watch
 }
 
+// A restarted run reports its loss again, at the step the first run did; a finding of the state
+// before the restart is still delivered by the next call.
+TEST(EllipticityWatch, RearmedItReportsTheNextRunsLossAtTheSameStep) {
+  const Bar b;
+  const std::vector<Vector> states = b.states();
+  EllipticityWatch watch(b.solid);
+  const auto run = [&] {
+    std::optional<EllipticityFinding> finding;
+    for (std::size_t k = 0; k < states.size(); ++k) {
+      const int step = static_cast<int>(k) + 1;
+      if (auto f = watch.check(states[k], step, 0.004 * step)) finding = f;
+    }
+    return finding;
+  };
+  const std::optional<EllipticityFinding> first = run();
+  ASSERT_TRUE(first);
+  watch.rearm();
+  const std::optional<EllipticityFinding> again = run();
+  ASSERT_TRUE(again);
+  EXPECT_EQ(again->step, first->step);
+  EXPECT_EQ(again->loss.element, first->loss.element);
+
+  // Stretched beyond the limit in the last state before the rearm: the next call delivers it.
+  watch.rearm();
+  EXPECT_FALSE(watch.check(bar(b.mesh, -0.01, 1.8), 7, 0.028));
+  watch.rearm();
+  const std::optional<EllipticityFinding> left = watch.check(bar(b.mesh, 0.12, 1.0), 1, 0.004);
+  ASSERT_TRUE(left);
+  EXPECT_EQ(left->step, 7);
+}
+
 TEST(EllipticityWatch, AnEllipticRunReportsNothing) {
   const Bar b;
   EllipticityWatch watch(b.solid);

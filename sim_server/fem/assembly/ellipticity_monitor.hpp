@@ -38,6 +38,12 @@ class EllipticityMonitor {
   // continuing where the previous call stopped, and reports a loss only the first time one is
   // found; after that it costs nothing.
   std::optional<EllipticityLoss> first_loss(const Vector& u);
+  // Ready to report again, its round from the first element: a new run (a restart) finds its
+  // loss at the step the first run did.
+  void reset() {
+    reported_ = false;
+    next_element_ = 0;
+  }
 
  private:
   std::pair<double, Mat3> centre_state(int e, const Vector& x) const;
