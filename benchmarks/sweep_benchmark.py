@@ -11,15 +11,21 @@ done twice at once against once, in the same pool: what two busy processes get o
 Usage: PYTHONPATH=build/python:python /usr/bin/python3 benchmarks/sweep_benchmark.py
            [--runs 40] [--duration 0.2] [--workers 2] [--repeats 3]
 """
-import argparse
-import multiprocessing
 import os
-import statistics
-import sys
-import tempfile
-import time
 
-import numpy as np
+# One BLAS thread in every process, this one too (OpenBLAS reads it when it loads, with the
+# module), as dask's workers have: the sequential runs are then faster than with OpenBLAS's
+# default of a thread per core, whose second thread contends with the first.
+os.environ.update(OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
+
+import argparse  # noqa: E402
+import multiprocessing  # noqa: E402
+import statistics  # noqa: E402
+import sys  # noqa: E402
+import tempfile  # noqa: E402
+import time  # noqa: E402
+
+import numpy as np  # noqa: E402
 
 HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "python"))
@@ -90,8 +96,6 @@ def main():
         client.wait_for_workers(args.workers)
         startup = time.perf_counter() - start
         sequential, parallel, floor, pair = [], [], [], []
-        # One BLAS thread per process, as dask's workers have.
-        os.environ.update(OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
         with tempfile.TemporaryDirectory() as tmp, \
                 multiprocessing.get_context("spawn").Pool(args.workers) as pool:
             pool.map(warm_up, range(args.workers))

@@ -24,6 +24,7 @@ def _export_python_path():
 
 @contextlib.contextmanager
 def dask_client(scheduler=None, workers=2):
+    import dask
     from distributed import Client, LocalCluster
     if scheduler:
         client = Client(scheduler)
@@ -33,6 +34,13 @@ def dask_client(scheduler=None, workers=2):
             client.close()
         return
     _export_python_path()
+    # The workers' environment as dask sets it (one BLAS thread each) but for its
+    # MALLOC_TRIM_THRESHOLD_ of 64 KiB, with which glibc hands freed memory back to the system
+    # so eagerly that tongue runs were 10-20 % slower (40 SG runs on two workers: 2.39-2.53 s
+    # with it, 2.06-2.11 s without; benchmarks/sweep_benchmark.py, alternating).
+    environ = dict(dask.config.get("distributed.nanny.pre-spawn-environ"))
+    environ.pop("MALLOC_TRIM_THRESHOLD_", None)
+    dask.config.set({"distributed.nanny.pre-spawn-environ": environ})
     cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True,
                            dashboard_address=None, silence_logs=logging.CRITICAL)
     client = Client(cluster)
