@@ -62,6 +62,8 @@ void SceneRun::restart(const fem::Vector& first_levels) {
   integrator_->prepare(scene::time_step_length(scene_.analysis, 0));
   if (built_.muscles) built_.muscles->set_activations(levels_);
   accept();
+  time_ = 0.0;
+  clock_ = StepClock{};
   step_ = 0;
   ellipticity_.rearm();
   reduced_warned_ = false;
@@ -71,7 +73,6 @@ void SceneRun::restart(const fem::Vector& first_levels) {
 void SceneRun::accept() {
   u_ = integrator_->displacement();
   v_ = integrator_->velocity();
-  time_ = integrator_->time();
   frame_ = scene_muscle_frame(built_, u_, &v_);
 }
 
@@ -86,7 +87,7 @@ StepResult SceneRun::step(double dt, const fem::Vector& levels) {
     // Nothing acts that did not act in the last step, and that one was in equilibrium: the
     // identity, with the state, its muscle frame and its stability unchanged.
     result.report = integrator_->hold(dt);
-    time_ = integrator_->time();
+    time_ = result.report.time = clock_.advance(dt);
     ++step_;
     result.muscles = frame_;
     result.ellipticity_loss = ellipticity_.collect();  // the last moving state's check
@@ -110,6 +111,7 @@ StepResult SceneRun::step(double dt, const fem::Vector& levels) {
   }
   levels_ = levels;
   accept();
+  time_ = result.report.time = clock_.advance(dt);
   ++step_;
   result.muscles = frame_;
   result.ellipticity_loss = ellipticity_.check(u_, step_, time_);

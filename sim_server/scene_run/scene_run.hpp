@@ -34,6 +34,7 @@
 #include "scene/scene.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene_run/ellipticity_watch.hpp"
+#include "scene_run/step_clock.hpp"
 
 namespace tongue::scene_run {
 
@@ -147,6 +148,7 @@ class SceneRun {
   fem::Vector u_, v_;  // m, m/s: the last accepted state (a failed step may leave the
                        // integrator at a substep)
   double time_ = 0.0;  // s
+  StepClock clock_;   // time_ as a count of steps
   fem::Vector levels_;
   fem::Vector factor_levels_;    // the levels the first step's factor was formed with
   run_file::MuscleFrame frame_;  // of u_, v_ and levels_

@@ -155,6 +155,28 @@ TEST(SceneRun, RestartRepeatsTheRunBitForBit) {
   EXPECT_EQ(drive(), first);
 }
 
+// The time is the count of steps times dt, not a running sum: 30 steps of 4 ms end at 0.12 s
+// exactly (adding 0.004 thirty times gives 0.12000000000000008); a step of another length counts
+// on from the time reached; a restart counts from 0 again.
+TEST(SceneRun, TimeIsTheStepCountTimesDt) {
+  const scene::Scene scene = box(false);
+  SceneRun run(scene, scene::build_scene(scene));
+  ASSERT_TRUE(run.start().converged);
+  for (int k = 1; k <= 30; ++k) {
+    EXPECT_EQ(run.step(0.004, level(0.3)).report.time, k * 0.004);
+    EXPECT_EQ(run.time(), k * 0.004);
+  }
+  EXPECT_EQ(run.time(), 0.12);
+  run.step(0.001, level(0.3));
+  EXPECT_EQ(run.time(), 0.12 + 0.001);
+  run.step(0.001, level(0.3));
+  EXPECT_EQ(run.time(), 0.12 + 2 * 0.001);
+  run.restart();
+  EXPECT_EQ(run.time(), 0.0);
+  run.step(0.004, level(0.3));
+  EXPECT_EQ(run.time(), 0.004);
+}
+
 TEST(SceneRun, RejectsLevelsOfTheWrongSizeOrRangeAndStaticScenes) {
   const scene::Scene scene = box(true);
   SceneRun run(scene, scene::build_scene(scene));

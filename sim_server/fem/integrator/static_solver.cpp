@@ -1,6 +1,8 @@
 #include "fem/integrator/static_solver.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <sstream>
 
 namespace tongue::fem {
@@ -44,18 +46,24 @@ class StaticProblem : public NonlinearProblem {
 
 }  // namespace
 
+// Beyond this many parts of the load a cut would leave increments that a double cannot tell apart.
+constexpr std::int64_t kMostParts = std::int64_t{1} << 50;
+
 StaticReport solve_static(const MechanicalSystem& system, Vector& u, const StaticSettings& settings,
                           const IncrementObserver& observer) {
   StaticReport report;
   const DofMap& dofs = system.solid().dofs();
   NewtonSolver newton(system.solid().pattern(), settings.newton);
+  // The load factor counted in increments of 1 / parts, parts = load_steps 2^cuts, so that it
+  // is i / load_steps exactly and ends at 1 (adding 0.1 ten times gives 0.9999999999999999).
+  std::int64_t reached = 0;
+  std::int64_t parts = std::max(1, settings.load_steps);
   double lambda = 0.0;
-  double increment = 1.0 / std::max(1, settings.load_steps);
   int cuts_in_row = 0;
   StepReport pending;  // cuts accumulate here until an increment is accepted
-  while (lambda < 1.0) {
+  while (reached < parts) {
     const auto start = std::chrono::steady_clock::now();
-    const double target = std::min(1.0, lambda + increment);
+    const double target = static_cast<double>(reached + 1) / static_cast<double>(parts);
     Vector trial = u;
     for (int dof : dofs.prescribed_dofs()) trial[dof] = target * dofs.prescribed_values()[dof];
     StaticProblem problem(system, trial, target);
@@ -66,9 +74,10 @@ StaticReport solve_static(const MechanicalSystem& system, Vector& u, const Stati
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     if (result.converged) {
       u = problem.full(x);
+      ++reached;
+      pending.dt = target - lambda;
       lambda = target;
       pending.time = lambda;
-      pending.dt = increment;
       pending.converged = true;
       report.increments.push_back(pending);
       if (observer) observer(pending, u);
@@ -78,13 +87,14 @@ StaticReport solve_static(const MechanicalSystem& system, Vector& u, const Stati
     }
     std::ostringstream why;
     why << "load factor " << lambda << " -> " << target << ": " << result.failure;
-    if (++cuts_in_row > settings.max_cuts) {
+    if (++cuts_in_row > settings.max_cuts || parts > kMostParts) {
       report.message = why.str() + "; gave up after " + std::to_string(settings.max_cuts) + " cuts";
       return report;
     }
     ++pending.cuts;
     pending.message += (pending.message.empty() ? "" : "; ") + why.str() + ", increment halved";
-    increment *= 0.5;
+    reached *= 2;
+    parts *= 2;
     newton.invalidate_factor();
   }
   report.converged = true;
