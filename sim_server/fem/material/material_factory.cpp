@@ -165,6 +165,14 @@ std::unique_ptr<Material> make_material(const std::string& type,
                                         const std::map<std::string, double>& params) {
   const Params p(type, params);
   if (type == "mooney_rivlin5") {
+    // The coefficients make one law together: some of them given with the others taken from
+    // Gerard et al.'s set is a different (and mostly unstable) material, never what was meant.
+    std::vector<std::string> given, missing;
+    for (const char* key : {"c10", "c01", "c20", "c11", "c02"})
+      (p.given(key) ? given : missing).push_back(key);
+    if (!given.empty() && !missing.empty())
+      p.fail("give all five coefficients c10, c01, c20, c11, c02 or none (Gerard et al. 2003's "
+             "set); " + join_names(given) + " given without " + join_names(missing));
     MooneyRivlin5::Coefficients c;
     c.c10 = p.get("c10");
     c.c01 = p.get("c01");

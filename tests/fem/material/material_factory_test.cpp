@@ -114,8 +114,22 @@ TEST(MaterialFactory, MissingOrInconsistentParameters) {
   EXPECT_NE(msg.find("'shear_modulus'"), std::string::npos) << msg;
   EXPECT_NE(error_of("linear", {{"shear_modulus", 1e3}}).find("'bulk_modulus'"), std::string::npos);
   // Unstable at rest: mu0 = 2 (c10 + c01) <= 0.
-  EXPECT_NE(error_of("mooney_rivlin5", {{"c10", 1000.0}, {"c01", -1000.0}}).find("'c10'"),
+  EXPECT_NE(error_of("mooney_rivlin5", {{"c10", 1000.0},
+                                        {"c01", -1000.0},
+                                        {"c20", 0.0},
+                                        {"c11", 0.0},
+                                        {"c02", 0.0}})
+                .find("'c10'"),
             std::string::npos);
+}
+
+// Some of the five coefficients given: the others would silently be Gerard et al.'s (c01 =
+// -1908 Pa with c10 = 2459 Pa gave a far softer material that did not converge).
+TEST(MaterialFactory, MooneyRivlinCoefficientsComeAllFiveOrNone) {
+  EXPECT_EQ(error_of("mooney_rivlin5", {{"c10", 2459.0}, {"bulk_modulus", 244267.0}}),
+            "material 'mooney_rivlin5': give all five coefficients c10, c01, c20, c11, c02 or "
+            "none (Gerard et al. 2003's set); c10 given without c01, c20, c11, c02");
+  EXPECT_NO_THROW(make_material("mooney_rivlin5", {{"bulk_modulus", 244267.0}}));
 }
 
 TEST(MaterialFactory, UnknownTypeListsKnownTypes) {
