@@ -235,7 +235,7 @@ class Parser : private common::YamlReader {
     ansys.elements_path =
         existing_file(required(n, path, "elements"), child_path(path, "elements"), "mesh");
     if (const auto s = n["length_scale"]; present(s))
-      ansys.length_scale = positive(s, child_path(path, "length_scale"), "m");
+      ansys.length_scale = positive(s, child_path(path, "length_scale"), "");
     return ansys;
   }
 

@@ -547,5 +547,23 @@ analysis: {type: static}
   EXPECT_DOUBLE_EQ(ansys.length_scale, 0.001);
 }
 
+// length_scale is a factor (metres per unit of the file), not a length: no unit in its message.
+TEST_F(TempDir, AZeroLengthScaleIsRefusedWithoutAUnit) {
+  write("t.node", "1 0 0 0\n");
+  write("t.elem", "1 1 1 1 1 1 1 1 1 1 1 1 0 1\n");
+  try {
+    read_scene(write("scene.yaml", R"(
+mesh: {ansys: {nodes: t.node, elements: t.elem, length_scale: 0}}
+material: {type: neo_hookean, parameters: {shear_modulus: 1}}
+analysis: {type: static}
+)"));
+    FAIL() << "no SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.key_path(), "mesh.ansys.length_scale");
+    EXPECT_NE(std::string(e.what()).find("must be positive, got 0 (line"), std::string::npos)
+        << e.what();
+  }
+}
+
 }  // namespace
 }  // namespace tongue::scene
