@@ -149,14 +149,20 @@ void print_quality(const char* label, const fem::Mesh& mesh, const fem::QualityR
     std::printf("%sworst element quality (min/max nodal det J): %.4g in element %ld\n", label,
                 q.worst_ratio, ids[q.worst_element]);
   }
-  std::printf("%svolume: %.4f cm^3\n", label, q.total_volume * 1e6);
+  std::printf("%svolume: %.6g cm^3\n", label, q.total_volume * 1e6);
 }
 
 int check(const fem::ImportedMesh& m) {
   const std::vector<long> ids = element_ids(m);
   std::printf("nodes: %d\nelements: %d\n", m.mesh.num_nodes(), m.mesh.num_elements());
+  std::printf("bounding box: %s\n", fem::bounding_box_text(m.mesh).c_str());
   const fem::QualityReport q = fem::check_quality(m.mesh);
   print_quality("", m.mesh, q, ids);
+  if (const std::string why = fem::implausible_size(m.mesh, q.total_volume); !why.empty()) {
+    std::fflush(stdout);
+    std::fprintf(stderr, "mesh_tool: error: %s\n", why.c_str());
+    return kExitError;
+  }
   return q.num_irregular == 0 ? kExitOk : kExitIrregular;
 }
 

@@ -16,6 +16,7 @@
 #include "fem/material/material_factory.hpp"
 #include "fem/mesh/ansys_reader.hpp"
 #include "fem/mesh/box_generator.hpp"
+#include "fem/mesh/mesh_quality.hpp"
 #include "model/default_tongue.hpp"
 #include "model/vocal_tract.hpp"
 #include "scene/scene_reader.hpp"
@@ -189,6 +190,12 @@ class Builder {
     try {
       fem::ImportedMesh imported =
           fem::read_ansys_mesh(ansys.nodes_path, ansys.elements_path, ansys.length_scale);
+      double volume = 0.0;
+      for (int e = 0; e < imported.mesh.num_elements(); ++e)
+        volume += fem::element_volume(imported.mesh, e);
+      if (const std::string why = fem::implausible_size(imported.mesh, volume); !why.empty())
+        fail("mesh.ansys.length_scale",
+             why + " (length_scale " + common::number_text(ansys.length_scale) + ")");
       id_map = std::move(imported.node_index_of_id);
       element_id_map = std::move(imported.element_index_of_id);
       return std::move(imported.mesh);

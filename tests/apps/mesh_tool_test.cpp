@@ -102,9 +102,23 @@ TEST_F(MeshTool, CheckOfRegularMeshExitsZero) {
   EXPECT_EQ(r.exit_code, 0) << r.out << r.err;
   EXPECT_TRUE(contains(r.out, "nodes: 45")) << r.out;
   EXPECT_TRUE(contains(r.out, "elements: 16")) << r.out;
-  EXPECT_TRUE(contains(r.out, "volume: 16.0000 cm^3")) << r.out;  // 16 cubes of 1 cm^3
+  EXPECT_TRUE(contains(r.out, "volume: 16 cm^3")) << r.out;  // 16 cubes of 1 cm^3
+  EXPECT_TRUE(contains(r.out, "bounding box: 0.04 x 0.02 x 0.02 m")) << r.out;
   EXPECT_TRUE(contains(r.out, "irregular elements: 0 of 16")) << r.out;
   EXPECT_TRUE(contains(r.out, "worst element quality (min/max nodal det J): 1 ")) << r.out;
+}
+
+// The box's file is in mm: read with a scale for a file in metres already scaled to mm, it is
+// 16e-9 cm^3, which only a wrong unit gives: an error (exit 1) with the bounding box in metres.
+TEST_F(MeshTool, VanishingVolumeIsAnErrorNamingTheBoundingBox) {
+  const BoxFiles box = write_box(false);
+  const RunResult r = run("check '" + box.nodes + "' '" + box.elements + "' --scale 1e-6");
+  EXPECT_EQ(r.exit_code, 1) << r.out << r.err;
+  EXPECT_TRUE(contains(r.err,
+                       "the mesh's volume is 1.6e-14 m^3 (less than 1 mm^3) in a bounding "
+                       "box of 4e-05 x 2e-05 x 2e-05 m"))
+      << r.err;
+  EXPECT_TRUE(contains(r.err, "is its length unit right")) << r.err;
 }
 
 TEST_F(MeshTool, CheckOfFoldedMeshExitsOneAndListsAnsysIds) {

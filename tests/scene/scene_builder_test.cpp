@@ -278,6 +278,22 @@ constraints:
   EXPECT_EQ(built.prescribed.size(), 8u + 8u);
 }
 
+// A length unit off by a thousand: two cubes of 1 um, 2e-18 m^3, is no body to simulate.
+TEST_F(AnsysScene, AVanishingVolumeBlamesTheLengthScale) {
+  Scene s = scene("");
+  std::get<AnsysMeshSpec>(s.mesh).length_scale = 1e-6;
+  try {
+    build_scene(s);
+    FAIL() << "no SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.key_path(), "mesh.ansys.length_scale") << e.what();
+    EXPECT_NE(std::string(e.what()).find("volume is 2e-18 m^3 (less than 1 mm^3) in a bounding "
+                                         "box of 2e-06 x 1e-06 x 1e-06 m"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(AnsysScene, UnknownNodeId) {
   try {
     build_scene(scene("node_sets:\n  tip: {ids: [102, 7]}\n"));

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <stdexcept>
 #include <string>
 
@@ -44,6 +45,29 @@ double element_volume(const Mesh& mesh, int element) {
     volume += qp.weight * hex8::jacobian(X, qp.xi).determinant();
   }
   return volume;
+}
+
+std::string bounding_box_text(const Mesh& mesh) {
+  if (mesh.nodes.empty()) return "empty (no nodes)";
+  Vec3 lo = mesh.nodes.front(), hi = lo;
+  for (const Vec3& x : mesh.nodes) {
+    lo = lo.cwiseMin(x);
+    hi = hi.cwiseMax(x);
+  }
+  const Vec3 size = hi - lo;
+  char text[200];
+  std::snprintf(text, sizeof text,
+                "%.4g x %.4g x %.4g m (from (%.4g, %.4g, %.4g) to (%.4g, %.4g, %.4g) m)", size.x(),
+                size.y(), size.z(), lo.x(), lo.y(), lo.z(), hi.x(), hi.y(), hi.z());
+  return text;
+}
+
+std::string implausible_size(const Mesh& mesh, double volume) {
+  if (volume >= kSmallestPlausibleVolume) return {};
+  char text[120];
+  std::snprintf(text, sizeof text, "the mesh's volume is %.4g m^3 (less than 1 mm^3)", volume);
+  return std::string(text) + " in a bounding box of " + bounding_box_text(mesh) +
+         ": is its length unit right (metres per file unit: 1 for m, 0.001 for mm)?";
 }
 
 QualityReport check_quality(const Mesh& mesh) {

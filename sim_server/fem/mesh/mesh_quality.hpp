@@ -3,6 +3,7 @@
 // (Luboz et al. 2001): an element is regular when all 8 nodal determinants are positive, which
 // is the condition for the isoparametric map to be invertible at the nodes.
 #include <array>
+#include <string>
 #include <vector>
 
 #include "fem/element/hex8_shape.hpp"
@@ -37,5 +38,18 @@ struct QualityReport {
 };
 
 QualityReport check_quality(const Mesh& mesh);
+
+// A rest volume below this [m^3] is taken for a wrong length unit, not a body: one cubic
+// millimetre. The tongue is 1.6e-4 m^3; its file in metres read as if in millimetres would be
+// 1.6e-13 m^3.
+inline constexpr double kSmallestPlausibleVolume = 1e-9;
+
+// "X x Y x Z m (from (x, y, z) to (x, y, z) m)": the mesh's bounding box, for messages about
+// its size.
+std::string bounding_box_text(const Mesh& mesh);
+
+// Why a mesh of this volume [m^3] is not plausible (zero, negative, or below
+// kSmallestPlausibleVolume), naming its bounding box; empty when it is.
+std::string implausible_size(const Mesh& mesh, double volume);
 
 }  // namespace tongue::fem
