@@ -57,9 +57,12 @@ std::vector<NodeListEntry> read_node_list(const std::string& path) {
       }
       long value = -1;
       const auto [end, err] = std::from_chars(token.data(), token.data() + token.size(), value);
-      if (err != std::errc() || end != token.data() + token.size() || value < 0)
-        fail(path, line,
-             "'" + std::string(token.substr(0, 32)) + "' is not a non-negative integer");
+      if (err != std::errc() || end != token.data() + token.size() || value < 0) {
+        // Appended, not "'" + text: GCC 12 warns falsely (-Wrestrict) about the latter.
+        std::string reason(1, '\'');
+        reason.append(token.substr(0, 32)).append("' is not a non-negative integer");
+        fail(path, line, reason);
+      }
       out.push_back({value, line});
     }
   }

@@ -144,7 +144,9 @@ TEST_F(SceneAnsysMacros, BuildsTheSameMusclesAsTheHandWrittenScene) {
     for (std::size_t f = 0; f < a[m].fibres.size(); ++f) {
       EXPECT_EQ(b[m].fibres[f].nodes, a[m].fibres[f].nodes);
       EXPECT_EQ(b[m].fibres[f].origin.has_value(), a[m].fibres[f].origin.has_value());
-      if (a[m].fibres[f].origin) EXPECT_EQ(*b[m].fibres[f].origin, *a[m].fibres[f].origin);
+      if (a[m].fibres[f].origin) {
+        EXPECT_EQ(*b[m].fibres[f].origin, *a[m].fibres[f].origin);
+      }
       EXPECT_EQ(b[m].fibres[f].weight, a[m].fibres[f].weight);
     }
   }
