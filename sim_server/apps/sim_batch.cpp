@@ -269,7 +269,7 @@ class BatchRun {
   void check_material(double t, const fem::Vector& u) {
     if (!monitor_) monitor_ = std::make_unique<fem::EllipticityMonitor>(*built().solid);
     if (const auto loss = monitor_->first_loss(u))
-      material_warning(t, fem::describe(*loss, built().solid->material()));
+      material_warning(t, fem::describe(*loss, built().solid->material(), built().numbering));
   }
 
   void set_activations(double t) {

@@ -14,6 +14,8 @@
 // (When every step is logged, "since the previous frame" is simply "of the step".)
 //   /mesh/node_sets/<name>     [n]   int32   0-based node indices, one dataset per node set
 //   /mesh/element_sets/<name>  [e]   int32   0-based element indices, one per element set
+//   /mesh/node_ids      [N]          int64   imported meshes only: the mesh file's id of each
+//   /mesh/element_ids   [E]          int64   node / element, by 0-based index
 // With M > 0 muscles (omitted without muscles):
 //   /muscles/names      [M]          string  UTF-8, the muscles' order in the datasets below
 //   /muscles/max_force  [M]          double  N, tension at full activation
@@ -59,6 +61,8 @@ inline constexpr const char* kReducedCorrection = "/solver/reduced_correction";
 inline constexpr const char* kMesh = "/mesh";
 inline constexpr const char* kNodeSets = "/mesh/node_sets";
 inline constexpr const char* kElementSets = "/mesh/element_sets";
+inline constexpr const char* kNodeIds = "/mesh/node_ids";
+inline constexpr const char* kElementIds = "/mesh/element_ids";
 
 inline constexpr const char* kMuscles = "/muscles";
 inline constexpr const char* kMuscleNames = "/muscles/names";

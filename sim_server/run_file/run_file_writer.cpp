@@ -226,6 +226,13 @@ void write_mesh_sets(const Writer& w, hid_t file, const MeshDescription& mesh) {
   for (const auto& [name, elements] : mesh.element_sets)
     w.fixed(file, L::element_set(name), H5T_STD_I32LE, H5T_NATIVE_INT, {elements.size()},
             elements.data(), "1", "0-based element indices of element set " + name);
+  // An imported mesh's own numbering, so that index i can be shown as the user's id.
+  if (!mesh.node_ids.empty())
+    w.fixed(file, L::kNodeIds, H5T_STD_I64LE, H5T_NATIVE_LONG, {mesh.node_ids.size()},
+            mesh.node_ids.data(), "1", "the mesh file's id of each node, by 0-based index");
+  if (!mesh.element_ids.empty())
+    w.fixed(file, L::kElementIds, H5T_STD_I64LE, H5T_NATIVE_LONG, {mesh.element_ids.size()},
+            mesh.element_ids.data(), "1", "the mesh file's id of each element, by 0-based index");
 }
 
 // Time, positions and the solver figures, each empty until the first append.

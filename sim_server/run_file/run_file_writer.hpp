@@ -20,6 +20,9 @@ struct MeshDescription {
   std::vector<std::array<int, 8>> elements;  // 0-based node indices, ANSYS SOLID185 node order
   std::map<std::string, std::vector<int>> node_sets;     // 0-based node indices
   std::map<std::string, std::vector<int>> element_sets;  // 0-based element indices
+  // An imported mesh's file ids by index (node_ids[i]: the id of node i); empty: none.
+  std::vector<long> node_ids;
+  std::vector<long> element_ids;
 };
 
 // A muscle as the run file describes it.

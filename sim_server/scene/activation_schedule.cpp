@@ -48,7 +48,16 @@ ActivationSchedule::ActivationSchedule(const Scene& scene,
       throw SceneError(scene.source, key.empty() ? path : path + "." + key, reason, spec.line);
     };
     ActivationStep step;
-    if (!spec.group.empty()) {
+    if (const auto declared = scene.muscle_groups.find(spec.group);
+        !spec.group.empty() && declared != scene.muscle_groups.end()) {
+      for (const std::string& name : declared->second) {
+        const int m = index_of(muscles, name);
+        if (m < 0)
+          fail("group", "group '" + spec.group + "' names unknown muscle '" + name +
+                            "' (known: " + names_of(muscles) + ")");
+        step.muscles.push_back(m);
+      }
+    } else if (!spec.group.empty()) {
       step.muscles = group_members(muscles, spec.group);
       if (step.muscles.empty())
         fail("group", "no muscle is named '" + spec.group + "' or starts with '" + spec.group +

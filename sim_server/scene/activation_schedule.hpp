@@ -24,9 +24,10 @@ class ActivationSchedule {
 
   ActivationSchedule() = default;  // no muscles, no steps
 
-  // Resolves the scene's activations against muscles. Throws SceneError (scene_reader.hpp) with
-  // the key path of the entry for an unknown muscle name, a group that matches no muscle, and a
-  // force beyond the named muscles' summed max_force.
+  // Resolves the scene's activations against muscles; a group is the scene's declared group of
+  // that name (Scene::muscle_groups), else every muscle named G or G_<anything>. Throws SceneError
+  // (scene_reader.hpp) with the key path of the entry for an unknown muscle name, a group that
+  // matches no muscle, and a force beyond the named muscles' summed max_force.
   ActivationSchedule(const Scene& scene, const std::vector<model::Muscle>& muscles);
 
   int num_muscles() const { return num_muscles_; }

@@ -31,6 +31,9 @@
 //     clamped: {box: {min: [-1e-9, -1, -1], max: [1e-9, 1, 1]}}   # rest positions, closed box, m
 //     tip: {ids: [5, 7]}           # ANSYS node ids for an imported mesh, 0-based indices otherwise
 //     both: {union: [clamped, tip]}
+//     jaw: {file: jaw.txt, numbering: one_based}   # a node list file (scene/node_list_file.hpp):
+//         # numbering ids (as for `ids`), or zero_based / one_based (mesh: ansys): positions in
+//         # the node file's order counted from 0 or 1
 //   constraints:                   # optional; per-component Dirichlet conditions
 //     - {set: clamped, components: [x, y, z]}            # displacement default 0 (fixed)
 //     - {set: tip, components: [z], displacement: 0.0}   # m; a number, or one per component
@@ -49,6 +52,12 @@
 //        fibres: [{nodes: [4, 9, 14], origin: [0, 0, 0], weight: 1.0}]}
 //         # fibre nodes as for node_sets, in order; origin (m, optional): a fixed attachment before
 //         # the first node; weight (default 1) > 0, scaled so that a muscle's weights sum to 1.
+//   muscles: {ansys_macros: {elements: CreateMuscles.mac, fibres: Fibers.mac,
+//                            max_force: MuscleMaxForce.txt, external_points: {4037: [x, y, z]},
+//                            groups: {SG: [STY_L, STY_R]}}}
+//         # mesh: ansys only; the list read from ANSYS muscle macros
+//         # (model/ansys_muscle_macros.hpp), paths relative to the scene file; external points
+//         # in m; groups: the muscles a `group:` activation names
 //   muscle_stiffening: 7.333       # optional; needs muscles. Stiffness of fully active muscle
 //                                  # tissue over resting tissue, >= 1 (1: off); default 110/15
 //                                  # (Gerard et al. 2003 sec. III.2: 15 kPa at rest, 110 kPa
@@ -64,12 +73,12 @@
 //     - {group: SG, force: 3.0, start: 0, end: 0.12}
 //         # level in [0, 1] of each muscle's max_force; force [N] >= 0: the total over the named
 //         # muscles, split by max_force (level = force / their summed max_force, at most 1).
-//         # group G: every muscle named G or starting with G_. start (s, default 0) >= 0, end
-//         # (s, optional: until the end of the run) > start. An entry is active while
-//         # start <= t <= end; where active entries overlap on a muscle, the later one in the
-//         # list sets its level. Muscles without an active entry are at 0. A dynamic step to
-//         # t_{n+1} uses the levels at t_{n+1}, the initial state (settled or not) has every
-//         # muscle off; a static analysis uses the levels at t = 0.
+//         # group G: the declared group G, else every muscle named G or starting with G_.
+//         # start (s, default 0) >= 0, end (s, optional: until the end of the run) > start. An
+//         entry is active while # start <= t <= end; where active entries overlap on a muscle, the
+//         later one in the # list sets its level. Muscles without an active entry are at 0. A
+//         dynamic step to # t_{n+1} uses the levels at t_{n+1}, the initial state (settled or not)
+//         has every # muscle off; a static analysis uses the levels at t = 0.
 //   obstacles: vocal_tract         # optional; rigid surfaces the solid's boundary nodes may not
 //                                  # pass (frictionless penalty contact, fem/contact/). The
 //                                  # built-in vocal tract (hard_palate, upper_teeth, velum,
@@ -166,11 +175,17 @@ struct MaterialSpec {
 
 struct NodeSetSpec {
   enum class Kind { box, ids, set_union };
+  // How Kind::ids numbers its nodes: by the mesh's ids (ANSYS ids for an imported mesh, 0-based
+  // indices otherwise), or by position in the mesh's node order counted from 0 or from 1.
+  enum class Numbering { ids, zero_based, one_based };
   std::string name;
   Kind kind = Kind::ids;
   fem::Vec3 box_min = fem::Vec3::Zero(), box_max = fem::Vec3::Zero();  // m (Kind::box)
   std::vector<long> ids;             // Kind::ids: ANSYS ids, or 0-based indices for a box mesh
   std::vector<std::string> members;  // Kind::set_union: names of other node sets
+  Numbering numbering = Numbering::ids;
+  std::string file;        // a node list file the ids were read from (resolved), or empty
+  std::vector<int> lines;  // with a file: the line of each id
 };
 
 struct ConstraintSpec {
@@ -193,6 +208,7 @@ struct FibreSpec {
   std::vector<long> nodes;
   std::optional<fem::Vec3> origin;  // m
   double weight = 1.0;              // relative; the builder normalizes a muscle's weights
+  std::string source;               // imported: "<file>, line <n>" of its definition
 };
 
 struct MuscleSpec {
@@ -200,9 +216,17 @@ struct MuscleSpec {
   double max_force = 0.0;  // N
   std::vector<long> elements;
   std::vector<FibreSpec> fibres;
+  std::string source;  // imported: "<file>, line <n>" of its definition; empty: the scene's list
 };
 
+// list: the scene's own list, or imported from ANSYS muscle macros (AnsysMacrosSpec).
 enum class MuscleSource { none, builtin, list };
+
+// muscles: {ansys_macros: ...}: where the imported muscles came from (files resolved).
+struct AnsysMacrosSpec {
+  std::string elements, fibres, max_force;
+  std::map<long, fem::Vec3> external_points;  // id in the fibres file -> position [m]
+};
 
 // One step of the activation schedule. Exactly one of muscles / group is given, and exactly one
 // of level / force; the builder resolves the names against the built muscles.
@@ -276,7 +300,11 @@ struct Scene {
   std::vector<LoadSpec> loads;
   fem::RayleighDamping damping;  // zero coefficients: no damping
   MuscleSource muscle_source = MuscleSource::none;
-  std::vector<MuscleSpec> muscles;  // MuscleSource::list, in file order
+  std::vector<MuscleSpec> muscles;              // MuscleSource::list, in file order
+  std::optional<AnsysMacrosSpec> ansys_macros;  // the list was imported from these files
+  // Named groups of muscles for activations' `group:`, declared by the scene; a group not
+  // declared here is every muscle named G or G_<anything>.
+  std::map<std::string, std::vector<std::string>> muscle_groups;
   std::vector<ActivationSpec> activations;
   // E_contracted / E_rest of active muscle tissue (model/active_stiffening.hpp); 1: none.
   double muscle_stiffening = model::kContractedToRestStiffness;

@@ -3,6 +3,7 @@
 #include "model/active_stiffening.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdio>
 #include <functional>
@@ -35,6 +36,10 @@ class Builder {
     BuiltScene built;
     std::vector<model::Muscle> muscles;  // the tongue's own; replaced by a scene's list
     fem::Mesh mesh = make_mesh(built.node_index_of_id, built.element_index_of_id, muscles);
+    if (std::holds_alternative<AnsysMeshSpec>(scene_.mesh))
+      built.numbering =
+          fem::MeshNumbering::from_index_maps(built.node_index_of_id, built.element_index_of_id);
+    numbering_ = &built.numbering;
     if (scene_.muscle_source == MuscleSource::list) {
       muscles = listed_muscles(mesh, built.node_index_of_id, built.element_index_of_id);
     } else if (scene_.muscle_source == MuscleSource::none) {
@@ -59,7 +64,7 @@ class Builder {
       solid->set_threads(scene_.threads);
       built.solid = std::move(solid);
     } catch (const std::invalid_argument& e) {
-      fail("mesh", e.what());
+      fail("mesh", with_element_id(e.what()));
     }
 
     built.system = std::make_unique<fem::MechanicalSystem>(built.solid);
@@ -163,7 +168,7 @@ class Builder {
       if (behind > 0) {
         fail("obstacles (" + o->name() + ")",
              std::to_string(behind) + " nodes of the mesh start behind obstacle '" + o->name() +
-                 "' (deepest: node index " + std::to_string(deepest) + ", " +
+                 "' (deepest: " + numbering().node(deepest) + ", " +
                  common::number_text(depth * 1e3) +
                  " mm): move it, or reverse its triangles if its normals face away from the solid");
       }
@@ -220,12 +225,12 @@ class Builder {
   // A node (or element) id of the scene as an index: ANSYS ids for an imported mesh, 0-based
   // indices otherwise.
   int index_of(long id, const std::map<long, int>& id_map, int count, const char* what,
-               const std::string& path) const {
+               const std::string& path, const std::string& hint = "") const {
     if (std::holds_alternative<AnsysMeshSpec>(scene_.mesh)) {
       const auto it = id_map.find(id);
       if (it == id_map.end())
-        fail(path,
-             std::string("no ") + what + " with id " + std::to_string(id) + " in the mesh file");
+        fail(path, std::string("no ") + what + " with id " + std::to_string(id) +
+                       " in the mesh file" + hint);
       return it->second;
     }
     if (id < 0 || id >= count)
@@ -241,24 +246,33 @@ class Builder {
     std::vector<model::Muscle> out;
     for (std::size_t i = 0; i < scene_.muscles.size(); ++i) {
       const MuscleSpec& spec = scene_.muscles[i];
-      const std::string path = "muscles[" + std::to_string(i) + "]";
+      // An imported muscle is named by the macro file and line it came from.
+      const bool imported = !spec.source.empty();
+      const std::string path =
+          imported ? "muscles.ansys_macros (" + spec.source + ", muscle " + spec.name + ")"
+                   : "muscles[" + std::to_string(i) + "]";
       if (mesh.element_sets.count(spec.name) || mesh.node_sets.count(spec.name))
-        fail(path + ".name", "name is already taken by a set of the mesh");
+        fail(imported ? path : path + ".name", "name is already taken by a set of the mesh");
       model::Muscle m;
       m.name = spec.name;
       m.max_force = spec.max_force;
       for (std::size_t k = 0; k < spec.elements.size(); ++k)
-        m.elements.push_back(index_of(spec.elements[k], element_ids, mesh.num_elements(), "element",
-                                      path + ".elements[" + std::to_string(k) + "]"));
+        m.elements.push_back(
+            index_of(spec.elements[k], element_ids, mesh.num_elements(), "element",
+                     imported ? path : path + ".elements[" + std::to_string(k) + "]"));
       std::sort(m.elements.begin(), m.elements.end());
       m.elements.erase(std::unique(m.elements.begin(), m.elements.end()), m.elements.end());
       for (std::size_t f = 0; f < spec.fibres.size(); ++f) {
         const FibreSpec& fs = spec.fibres[f];
-        const std::string f_path = path + ".fibres[" + std::to_string(f) + "]";
+        const std::string f_path = imported ? "muscles.ansys_macros (" + fs.source + ", fibre " +
+                                                  std::to_string(f + 1) + " of " + spec.name + ")"
+                                            : path + ".fibres[" + std::to_string(f) + "]";
         model::Fibre fibre;
         for (std::size_t k = 0; k < fs.nodes.size(); ++k)
-          fibre.nodes.push_back(index_of(fs.nodes[k], node_ids, mesh.num_nodes(), "node",
-                                         f_path + ".nodes[" + std::to_string(k) + "]"));
+          fibre.nodes.push_back(
+              index_of(fs.nodes[k], node_ids, mesh.num_nodes(), "node",
+                       imported ? f_path : f_path + ".nodes[" + std::to_string(k) + "]",
+                       imported ? " (an external point? list it under external_points)" : ""));
         fibre.origin = fs.origin;
         fibre.weight = fs.weight;
         m.fibres.push_back(std::move(fibre));
@@ -315,9 +329,22 @@ class Builder {
             fail(path + ".box", "selects no nodes (rest positions in m: check units and bounds)");
           break;
         case NodeSetSpec::Kind::ids:
-          for (std::size_t i = 0; i < s.ids.size(); ++i)
-            nodes.push_back(index_of(s.ids[i], id_map, mesh.num_nodes(), "node",
-                                     path + ".ids[" + std::to_string(i) + "]"));
+          for (std::size_t i = 0; i < s.ids.size(); ++i) {
+            const std::string at = s.file.empty() ? path + ".ids[" + std::to_string(i) + "]"
+                                                  : path + ".file (" + s.file + ", line " +
+                                                        std::to_string(s.lines[i]) + ")";
+            if (s.numbering == NodeSetSpec::Numbering::ids) {
+              nodes.push_back(index_of(s.ids[i], id_map, mesh.num_nodes(), "node", at));
+              continue;
+            }
+            const int base = s.numbering == NodeSetSpec::Numbering::one_based ? 1 : 0;
+            const long index = s.ids[i] - base;
+            if (index < 0 || index >= mesh.num_nodes())
+              fail(at, "node " + std::to_string(s.ids[i]) + " is outside the mesh's " +
+                           std::to_string(mesh.num_nodes()) + " nodes (numbered from " +
+                           std::to_string(base) + " in node file order)");
+            nodes.push_back(static_cast<int>(index));
+          }
           break;
         case NodeSetSpec::Kind::set_union:
           for (std::size_t i = 0; i < s.members.size(); ++i) {
@@ -374,7 +401,7 @@ class Builder {
           if (!inserted) {
             if (it->second.first != value)
               fail("constraints[" + std::to_string(i) + "]",
-                   "node " + std::to_string(node) + " component " + kComponentNames[component] +
+                   numbering().node(node) + " component " + kComponentNames[component] +
                        " is prescribed " + common::number_text(value) + " m here and " +
                        common::number_text(it->second.first) + " m by constraints[" +
                        std::to_string(it->second.second) + "]");
@@ -387,7 +414,26 @@ class Builder {
     return prescribed;
   }
 
+  // A message of the solid starting "element <index>: ..." with the element as the user's
+  // files number it.
+  std::string with_element_id(const std::string& what) const {
+    const std::string head = "element ";
+    if (what.compare(0, head.size(), head) != 0) return what;
+    std::size_t end = head.size();
+    while (end < what.size() && std::isdigit(static_cast<unsigned char>(what[end]))) ++end;
+    if (end == head.size() || end >= what.size() || what[end] != ':') return what;
+    return numbering().element(std::stoi(what.substr(head.size(), end - head.size()))) +
+           what.substr(end);
+  }
+
+  // The file ids of an imported mesh, for messages (empty numbering otherwise).
+  const fem::MeshNumbering& numbering() const {
+    static const fem::MeshNumbering none;
+    return numbering_ ? *numbering_ : none;
+  }
+
   const Scene& scene_;
+  const fem::MeshNumbering* numbering_ = nullptr;  // the BuiltScene's, while building
 };
 
 }  // namespace

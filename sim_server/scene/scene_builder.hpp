@@ -10,6 +10,7 @@
 #include "fem/integrator/mechanical_system.hpp"
 #include "fem/integrator/newmark_integrator.hpp"
 #include "fem/integrator/static_solver.hpp"
+#include "fem/mesh/mesh_numbering.hpp"
 #include "model/muscle_forces.hpp"
 #include "scene/activation_schedule.hpp"
 #include "scene/scene.hpp"
@@ -37,6 +38,8 @@ struct BuiltScene {
   std::vector<fem::PrescribedDof> prescribed;  // as given to the solid
   std::map<long, int> node_index_of_id;        // imported meshes: file node id -> index
   std::map<long, int> element_index_of_id;     // imported meshes: file element id -> index
+  // Imported meshes: the file ids by index, for messages and the run file; empty otherwise.
+  fem::MeshNumbering numbering;
 };
 
 // The material as text: its type, the parameters the scene gives and the density (a reduced

@@ -10,8 +10,10 @@
 #include "common/number_text.hpp"
 #include "common/yaml_reader.hpp"
 #include "fem/material/material_factory.hpp"
+#include "model/ansys_muscle_macros.hpp"
 #include "model/default_tongue.hpp"
 #include "model/tongue_muscles.hpp"
+#include "scene/node_list_file.hpp"
 
 namespace tongue::scene {
 
@@ -324,10 +326,17 @@ class Parser : private common::YamlReader {
       const YAML::Node def = it->second;
       if (!present(def)) fail(set_path, "expected one of 'box', 'ids', 'union'", it->first);
       expect_map(def, set_path);
-      check_keys(def, set_path, {"box", "ids", "union"});
-      if (def.size() != 1) fail(set_path, "give exactly one of 'box', 'ids', 'union'", def);
+      check_keys(def, set_path, {"box", "ids", "union", "file", "numbering"});
       NodeSetSpec spec;
       spec.name = name;
+      if (present(def["file"])) {
+        read_node_list_set(def, set_path, scene, spec);
+        scene.node_sets.push_back(std::move(spec));
+        continue;
+      }
+      if (present(def["numbering"]))
+        fail(child_path(set_path, "numbering"), "belongs to a node list 'file'", def["numbering"]);
+      if (def.size() != 1) fail(set_path, "give exactly one of 'box', 'ids', 'union', 'file'", def);
       if (const auto box = def["box"]; present(box)) {
         const std::string box_path = child_path(set_path, "box");
         expect_map(box, box_path);
@@ -355,6 +364,52 @@ class Parser : private common::YamlReader {
         fail(set_path, "give exactly one of 'box', 'ids', 'union'", def);
       }
       scene.node_sets.push_back(std::move(spec));
+    }
+  }
+
+  // {file: jaw.txt, numbering: one_based}: a node list file (scene/node_list_file.hpp).
+  void read_node_list_set(const YAML::Node& def, const std::string& set_path, const Scene& scene,
+                          NodeSetSpec& spec) const {
+    if (def.size() != 2 || !present(def["numbering"]))
+      fail(set_path,
+           "a node list file needs 'numbering' (ids, zero_based or one_based) and nothing else",
+           def);
+    const std::string num_path = child_path(set_path, "numbering");
+    const std::string numbering = text(def["numbering"], num_path);
+    if (numbering == "ids") {
+      spec.numbering = NodeSetSpec::Numbering::ids;
+    } else if (numbering == "zero_based") {
+      spec.numbering = NodeSetSpec::Numbering::zero_based;
+    } else if (numbering == "one_based") {
+      spec.numbering = NodeSetSpec::Numbering::one_based;
+    } else {
+      fail(num_path,
+           "unknown numbering '" + numbering +
+               "' (known: ids, the mesh's node ids; zero_based and one_based, the position in "
+               "the node file counted from 0 or 1)",
+           def["numbering"]);
+    }
+    if (spec.numbering != NodeSetSpec::Numbering::ids &&
+        !std::holds_alternative<AnsysMeshSpec>(scene.mesh))
+      fail(num_path, "zero_based and one_based count the nodes of an imported mesh (mesh: ansys)",
+           def["numbering"]);
+    const std::string file_path = child_path(set_path, "file");
+    spec.kind = NodeSetSpec::Kind::ids;
+    spec.file = existing_file(def["file"], file_path, "node list");
+    std::vector<NodeListEntry> entries;
+    try {
+      entries = read_node_list(spec.file);
+    } catch (const std::runtime_error& e) {
+      fail(file_path, e.what(), def["file"]);
+    }
+    for (const auto& entry : entries) {
+      if (spec.numbering == NodeSetSpec::Numbering::one_based && entry.number == 0)
+        fail(file_path,
+             spec.file + ", line " + std::to_string(entry.line) +
+                 ": node 0 in a one_based list (is it zero_based?)",
+             def["file"]);
+      spec.ids.push_back(entry.number);
+      spec.lines.push_back(entry.line);
     }
   }
 
@@ -447,7 +502,10 @@ class Parser : private common::YamlReader {
       scene.muscle_source = MuscleSource::builtin;
       return;
     }
-    if (!n.IsSequence()) fail(path, "expected 'builtin' or a list of muscles", n);
+    if (n.IsMap() && n.size() == 1 && present(n["ansys_macros"]))
+      return read_ansys_macros(n, path, scene);
+    if (!n.IsSequence())
+      fail(path, "expected 'builtin' or a list of muscles, or {ansys_macros: {...}}", n);
     if (n.size() == 0) fail(path, "the list is empty (omit the key for no muscles)", n);
     scene.muscle_source = MuscleSource::list;
     for (std::size_t i = 0; i < n.size(); ++i) {
@@ -488,6 +546,96 @@ class Parser : private common::YamlReader {
         spec.fibres.push_back(std::move(fs));
       }
       scene.muscles.push_back(std::move(spec));
+    }
+  }
+
+  // muscles: {ansys_macros: {elements, fibres, max_force, external_points, groups}}: the muscles
+  // imported from ANSYS macros (model/ansys_muscle_macros.hpp), ids as in the mesh files.
+  void read_ansys_macros(const YAML::Node& n, const std::string& path, Scene& scene) const {
+    const std::string m_path = child_path(path, "ansys_macros");
+    const YAML::Node m = required(n, path, "ansys_macros");
+    expect_map(m, m_path);
+    check_keys(m, m_path, {"elements", "fibres", "max_force", "external_points", "groups"});
+    if (!std::holds_alternative<AnsysMeshSpec>(scene.mesh))
+      fail(m_path,
+           "ANSYS muscle macros number elements and nodes as the ANSYS mesh files do: they need "
+           "mesh: ansys",
+           m);
+    AnsysMacrosSpec spec;
+    spec.elements =
+        existing_file(required(m, m_path, "elements"), child_path(m_path, "elements"), "elements");
+    spec.fibres =
+        existing_file(required(m, m_path, "fibres"), child_path(m_path, "fibres"), "fibres");
+    spec.max_force = existing_file(required(m, m_path, "max_force"),
+                                   child_path(m_path, "max_force"), "max-force");
+    if (const auto e = m["external_points"]; present(e)) {
+      const std::string e_path = child_path(m_path, "external_points");
+      expect_map(e, e_path);
+      for (auto it = e.begin(); it != e.end(); ++it) {
+        const std::string key = it->first.Scalar();
+        const std::string p_path = child_path(e_path, key);
+        const long id = at_least(it->first, p_path, 1);
+        if (spec.external_points.count(id)) fail(p_path, "point given twice", it->first);
+        spec.external_points[id] = vec3(it->second, p_path);
+      }
+    }
+    model::AnsysMuscleFiles files{spec.elements, spec.fibres, spec.max_force, spec.external_points};
+    model::ImportedMuscles imported;
+    try {
+      imported = model::import_ansys_muscles(files);
+    } catch (const model::MacroReadError& e) {
+      const std::string key = e.path() == spec.elements ? "elements"
+                              : e.path() == spec.fibres ? "fibres"
+                                                        : "max_force";
+      fail(child_path(m_path, key), e.what(), m[key]);
+    }
+    scene.muscle_source = MuscleSource::list;
+    for (auto& muscle : imported.muscles) {
+      if (mesh_may_provide(scene.mesh, muscle.name) || muscle.name == "names")
+        fail(child_path(m_path, "elements"),
+             muscle.source + ": muscle name '" + muscle.name + "' is taken by a set of the mesh",
+             m["elements"]);
+      MuscleSpec ms;
+      ms.name = muscle.name;
+      ms.max_force = muscle.max_force;
+      ms.elements = std::move(muscle.element_ids);
+      ms.source = muscle.source;
+      for (auto& fibre : muscle.fibres) {
+        FibreSpec fs;
+        fs.nodes = std::move(fibre.node_ids);
+        fs.origin = fibre.origin;
+        fs.source = fibre.source;
+        ms.fibres.push_back(std::move(fs));
+      }
+      scene.muscles.push_back(std::move(ms));
+    }
+    scene.ansys_macros = std::move(spec);
+    if (const auto g = m["groups"]; present(g)) {
+      const std::string g_path = child_path(m_path, "groups");
+      expect_map(g, g_path);
+      for (auto it = g.begin(); it != g.end(); ++it) {
+        const std::string group = name(it->first, g_path);
+        const std::string group_path = child_path(g_path, group);
+        if (scene.muscle_groups.count(group)) fail(group_path, "group defined twice", it->first);
+        expect_sequence(it->second, group_path);
+        if (it->second.size() == 0) fail(group_path, "the group is empty", it->second);
+        std::vector<std::string> members;
+        for (std::size_t k = 0; k < it->second.size(); ++k) {
+          const std::string k_path = index_path(group_path, k);
+          const std::string member = text(it->second[k], k_path);
+          if (std::none_of(scene.muscles.begin(), scene.muscles.end(),
+                           [&](const MuscleSpec& x) { return x.name == member; })) {
+            std::vector<std::string> known;
+            for (const auto& x : scene.muscles) known.push_back(x.name);
+            fail(k_path, "no imported muscle '" + member + "' (known: " + join(known) + ")",
+                 it->second[k]);
+          }
+          if (contains(members, member))
+            fail(k_path, "muscle '" + member + "' listed twice", it->second[k]);
+          members.push_back(member);
+        }
+        scene.muscle_groups[group] = std::move(members);
+      }
     }
   }
 

@@ -8,8 +8,11 @@
 
 namespace tongue::scene_run {
 
-EllipticityWatch::EllipticityWatch(const fem::SolidModel& solid)
-    : monitor_(solid), material_(solid.material()), worker_([this] { run(); }) {}
+EllipticityWatch::EllipticityWatch(const fem::SolidModel& solid, fem::MeshNumbering numbering)
+    : monitor_(solid),
+      material_(solid.material()),
+      numbering_(std::move(numbering)),
+      worker_([this] { run(); }) {}
 
 EllipticityWatch::~EllipticityWatch() {
   {
@@ -67,7 +70,7 @@ void EllipticityWatch::run() {
     lock.unlock();
     std::optional<EllipticityFinding> found;
     if (const auto loss = monitor_.first_loss(u_))
-      found = EllipticityFinding{step_, time_, *loss, fem::describe(*loss, material_)};
+      found = EllipticityFinding{step_, time_, *loss, fem::describe(*loss, material_, numbering_)};
     lock.lock();
     if (found) found_ = std::move(found);
     busy_ = false;

@@ -29,7 +29,8 @@ struct EllipticityFinding {
 
 class EllipticityWatch {
  public:
-  explicit EllipticityWatch(const fem::SolidModel& solid);
+  // numbering names the element of a warning (fem::describe).
+  explicit EllipticityWatch(const fem::SolidModel& solid, fem::MeshNumbering numbering = {});
   ~EllipticityWatch();  // waits for the check under way
   EllipticityWatch(const EllipticityWatch&) = delete;
   EllipticityWatch& operator=(const EllipticityWatch&) = delete;
@@ -50,6 +51,7 @@ class EllipticityWatch {
 
   fem::EllipticityMonitor monitor_;  // the worker's while busy_
   const fem::Material& material_;
+  const fem::MeshNumbering numbering_;
   std::mutex mutex_;
   std::condition_variable changed_;  // a check handed over or ended, or stopping
   fem::Vector u_;                    // the state being checked: the worker's while busy_

@@ -11,7 +11,7 @@
 namespace tongue::scene_run {
 
 SceneRun::SceneRun(const scene::Scene& scene, scene::BuiltScene built)
-    : scene_(scene), built_(std::move(built)), ellipticity_(*built_.solid) {
+    : scene_(scene), built_(std::move(built)), ellipticity_(*built_.solid, built_.numbering) {
   if (scene_.analysis.type != scene::AnalysisType::dynamic)
     throw std::invalid_argument(scene_.source +
                                 ": a run needs a dynamic analysis (analysis.type: dynamic)");

@@ -58,8 +58,11 @@ std::unique_ptr<run_file::RunFileWriter> open_scene_run_file(const std::string& 
       obstacles.push_back(std::move(d));
     }
   }
-  auto log = std::make_unique<run_file::RunFileWriter>(path, mesh_description(built.solid->mesh()),
-                                                       scene.text, options, muscles, obstacles);
+  run_file::MeshDescription mesh = mesh_description(built.solid->mesh());
+  mesh.node_ids = built.numbering.node_ids;
+  mesh.element_ids = built.numbering.element_ids;
+  auto log = std::make_unique<run_file::RunFileWriter>(path, mesh, scene.text, options, muscles,
+                                                       obstacles);
   log->set_attribute("analysis", dynamic ? "dynamic" : "static");
   // What frame 0 shows, so that pictures can compare the end with rest under gravity.
   log->set_attribute("initial_state",

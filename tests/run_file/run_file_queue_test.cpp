@@ -332,5 +332,35 @@ TEST_F(RunFileQueueTest, TheDestructorDrainsTheQueueAndClosesTheFile) {
   EXPECT_TRUE(fs::exists(dir_ / "run.xmf"));  // written when the writer closed
 }
 
+// An imported mesh's file ids by index, so that index i can be named as the user's files do.
+TEST_F(RunFileQueueTest, ImportedMeshIdsAreWrittenByIndex) {
+  MeshDescription m = mesh(8);
+  m.node_ids = {101, 102, 103, 104, 105, 106, 107, 1000};
+  m.element_ids = {89};
+  const fs::path path = dir_ / "ids.h5";
+  { RunFileWriter w(path.string(), m, "scene: text\n", RunFileOptions{}, {}, {}); }
+  const hid_t file = H5Fopen(path.string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  ASSERT_GE(file, 0);
+  const auto read = [&](const char* name, std::size_t n) {
+    std::vector<long> values(n, -1);
+    const hid_t ds = H5Dopen2(file, name, H5P_DEFAULT);
+    EXPECT_GE(ds, 0) << name;
+    const hid_t space = H5Dget_space(ds);
+    EXPECT_EQ(H5Sget_simple_extent_npoints(space), static_cast<hssize_t>(n)) << name;
+    H5Sclose(space);
+    EXPECT_GE(H5Dread(ds, H5T_NATIVE_LONG, H5S_ALL, H5S_ALL, H5P_DEFAULT, values.data()), 0);
+    H5Dclose(ds);
+    return values;
+  };
+  EXPECT_EQ(read("/mesh/node_ids", 8), m.node_ids);
+  EXPECT_EQ(read("/mesh/element_ids", 1), m.element_ids);
+  H5Fclose(file);
+  // A generated mesh has none.
+  { RunFileWriter w((dir_ / "plain.h5").string(), mesh(8), "", RunFileOptions{}, {}, {}); }
+  const hid_t plain = H5Fopen((dir_ / "plain.h5").string().c_str(), H5F_ACC_RDONLY, H5P_DEFAULT);
+  EXPECT_EQ(H5Lexists(plain, "/mesh/node_ids", H5P_DEFAULT), 0);
+  H5Fclose(plain);
+}
+
 }  // namespace
 }  // namespace tongue::run_file

@@ -75,15 +75,17 @@ std::optional<EllipticityLoss> EllipticityMonitor::first_loss(const Vector& u) {
   return std::nullopt;
 }
 
-std::string describe(const EllipticityLoss& loss, const Material& material) {
+std::string describe(const EllipticityLoss& loss, const Material& material,
+                     const MeshNumbering& numbering) {
   char text[512];
   std::snprintf(text, sizeof text,
-                "the material law %s is no longer strongly elliptic in element %d (smallest "
+                "the material law %s is no longer strongly elliptic in %s (smallest "
                 "acoustic-tensor eigenvalue %.3g Pa = %.2f x its initial shear modulus, isochoric "
                 "strain |C_bar - I| = %.2f): the law is unstable there, strain can localize at "
                 "the scale of the mesh, and results from here on are not to be trusted",
-                material.name().c_str(), loss.element, loss.min_eigenvalue,
-                loss.min_eigenvalue / material.initial_shear_modulus(), loss.strain);
+                material.name().c_str(), numbering.element(loss.element).c_str(),
+                loss.min_eigenvalue, loss.min_eigenvalue / material.initial_shear_modulus(),
+                loss.strain);
   std::string s = text;
   if (material.name() == "mooney_rivlin5") {
     s += " (mooney_rivlin5 with Gerard et al.'s c01, c11 < 0 loses ellipticity beyond a uniaxial "

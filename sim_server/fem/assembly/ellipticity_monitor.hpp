@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "fem/assembly/solid_model.hpp"
+#include "fem/mesh/mesh_numbering.hpp"
 
 namespace tongue::fem {
 
@@ -56,7 +57,9 @@ class EllipticityMonitor {
   std::vector<Eigen::Matrix<double, 8, 3>> centre_gradients_;  // dN_a/dX at each centre
 };
 
-// One line for a user: where ellipticity was lost, by how much, and what it means for the run.
-std::string describe(const EllipticityLoss& loss, const Material& material);
+// One line for a user: where ellipticity was lost (the element as numbering names it: by its
+// file id and index for an imported mesh), by how much, and what it means for the run.
+std::string describe(const EllipticityLoss& loss, const Material& material,
+                     const MeshNumbering& numbering = {});
 
 }  // namespace tongue::fem
