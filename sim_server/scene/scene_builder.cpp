@@ -112,6 +112,7 @@ class Builder {
     const AnalysisSpec& a = scene_.analysis;
     built.static_settings.load_steps = a.load_steps;
     built.static_settings.max_cuts = a.max_cuts;
+    built.static_settings.require_held = scene_.obstacles.empty();  // contact may hold it
     built.static_settings.newton = scene_.solver;
     built.dynamic_settings.newmark = a.newmark;
     built.dynamic_settings.damping = scene_.damping;

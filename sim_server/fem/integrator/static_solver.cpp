@@ -1,5 +1,7 @@
 #include "fem/integrator/static_solver.hpp"
 
+#include "fem/assembly/rigid_motions.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cstdint>
@@ -53,6 +55,18 @@ StaticReport solve_static(const MechanicalSystem& system, Vector& u, const Stati
                           const IncrementObserver& observer) {
   StaticReport report;
   const DofMap& dofs = system.solid().dofs();
+  if (settings.require_held) {
+    std::vector<PrescribedDof> prescribed;
+    for (int dof : dofs.prescribed_dofs()) prescribed.push_back({dof / 3, dof % 3, 0.0});
+    const std::vector<std::string> free =
+        free_rigid_motions(system.solid().mesh().nodes, prescribed);
+    if (!free.empty()) {
+      report.message = "the model is free to move as a rigid body (";
+      for (std::size_t i = 0; i < free.size(); ++i) report.message += (i ? "; " : "") + free[i];
+      report.message += "): its constraints must hold it for a static solution";
+      return report;
+    }
+  }
   NewtonSolver newton(system.solid().pattern(), settings.newton);
   // The load factor counted in increments of 1 / parts, parts = load_steps 2^cuts, so that it
   // is i / load_steps exactly and ends at 1 (adding 0.1 ten times gives 0.9999999999999999).

@@ -13,6 +13,9 @@ namespace tongue::fem {
 
 struct StaticSettings {
   int load_steps = 1;
+  // Refuse a solid its Dirichlet conditions leave free to move rigidly (fem/assembly/
+  // rigid_motions.hpp) before solving; off where something else may hold it (obstacles).
+  bool require_held = true;
   int max_cuts = 6;  // an increment may be halved this many times in a row
   NewtonSettings newton;
 };
@@ -27,7 +30,8 @@ struct StaticReport {
 using IncrementObserver = std::function<void(const StepReport&, const Vector& u)>;
 
 // u: initial guess in, equilibrium out (full displacement vector). Prescribed dofs end at their
-// prescribed values. On failure u holds the last accepted increment.
+// prescribed values. On failure u holds the last accepted increment. A solid free to move as a
+// rigid body (settings.require_held) fails at once, the report's message naming the motions.
 StaticReport solve_static(const MechanicalSystem& system, Vector& u, const StaticSettings& settings,
                           const IncrementObserver& observer = {});
 
