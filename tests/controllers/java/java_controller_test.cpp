@@ -4,7 +4,6 @@
 // running the same schedule. Ports 7980-7984.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,8 +11,7 @@
 #include "support/run_command.hpp"
 #include "support/run_file.hpp"
 #include "support/same_run.hpp"
-#include "support/sim_server_driver.hpp"
-#include "support/temp_dir_test.hpp"
+#include "support/step_controller_test.hpp"
 
 #ifndef SIM_SERVER_PATH
 #error "SIM_SERVER_PATH must name the sim_server executable"
@@ -31,76 +29,21 @@
 namespace tongue::controller {
 namespace {
 
-namespace fs = std::filesystem;
 using testing::bus_url;
 using testing::ChildProcess;
-using testing::ServerController;
+using testing::logged;
+using testing::Schedule;
+constexpr int kSteps = testing::kControllerSteps;
+constexpr int kRunWaitMs = 60000;  // a whole run of 12 box steps, JVM start-up included
 
-constexpr int kSteps = 12;
-constexpr int kRunWaitMs = 60000;      // a whole run of 12 box steps, JVM start-up included
-using Schedule = std::vector<double>;  // a muscle's level for steps 1 .. kSteps
-
-class JavaController : public testing::TempDirTest {
+class JavaController : public testing::StepControllerTest {
  protected:
-  // Starts one Java controller (args after the bus options) and waits until it listens, so that
-  // a server started next cannot publish anything before it is subscribed.
+  JavaController() : StepControllerTest(JAVA_STEP_CONTROLLER_PATH, kRunWaitMs, "20000") {}
   std::unique_ptr<ChildProcess> start_java(const std::string& url, const std::string& name,
                                            const std::vector<std::string>& args) {
-    std::vector<std::string> all{"--lcm-url", url, "--timeout-ms", "20000"};
-    all.insert(all.end(), args.begin(), args.end());
-    auto java = std::make_unique<ChildProcess>(JAVA_STEP_CONTROLLER_PATH, all, dir_, name);
-    EXPECT_TRUE(java->started());
-    EXPECT_TRUE(java->wait_stderr("listening on", kRunWaitMs)) << java->stderr_text();
-    return java;
-  }
-  std::unique_ptr<ChildProcess> start_server(const std::string& url, const std::string& run,
-                                             int steps = kSteps,
-                                             const std::vector<std::string>& extra = {}) {
-    std::vector<std::string> args{(dir_ / "scene.yaml").string(),
-                                  "--lcm-url",
-                                  url,
-                                  "--output",
-                                  (dir_ / (run + ".h5")).string(),
-                                  "--max-steps",
-                                  std::to_string(steps)};
-    args.insert(args.end(), extra.begin(), extra.end());
-    auto server = std::make_unique<ChildProcess>(SIM_SERVER_PATH, args, dir_, run);
-    EXPECT_TRUE(server->started());
-    return server;
-  }
-  // The C++ driver's run: one controller sending, for every step, the levels of the schedules.
-  void run_cpp_driver(int port, const std::vector<std::string>& muscles,
-                      const std::vector<Schedule>& schedules) {
-    const std::string url = bus_url(port);
-    ServerController controller(url);
-    ASSERT_TRUE(controller.good());
-    auto server = start_server(url, "cpp");
-    for (int k = 0; k < kSteps; ++k) {
-      ASSERT_TRUE(controller.wait_step(k, kRunWaitMs)) << server->stderr_text();
-      std::vector<double> levels;
-      for (const Schedule& s : schedules) levels.push_back(s[k]);
-      controller.send_activation(k + 1, muscles, levels);
-    }
-    ASSERT_EQ(server->wait_exit(kRunWaitMs), 0) << server->stderr_text();
-  }
-  // sim_batch's run of scene.yaml into batch.h5.
-  void run_sim_batch() {
-    const testing::RunResult batch =
-        testing::run_command(SIM_BATCH_PATH,
-                             "'" + (dir_ / "scene.yaml").string() + "' --quiet --output '" +
-                                 (dir_ / "batch.h5").string() + "'",
-                             dir_);
-    ASSERT_EQ(batch.exit_code, 0) << batch.err;
+    return start_controller(url, name, args);
   }
 };
-
-// The logged activations of a run of these schedules: frame 0 all 0, frame k the levels of step k.
-std::vector<double> logged(const std::vector<Schedule>& schedules) {
-  std::vector<double> out(schedules.size(), 0.0);
-  for (int k = 0; k < kSteps; ++k)
-    for (const Schedule& s : schedules) out.push_back(s[k]);
-  return out;
-}
 
 // The schedule of LuaController.DrivesTheServerAsTheCppDriverDoes, so that the Java run is the
 // Lua run too. One port for both runs, one after the other: the Java run's server has exited

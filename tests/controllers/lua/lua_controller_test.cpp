@@ -4,7 +4,6 @@
 // Ports 7850-7855.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -12,8 +11,7 @@
 #include "support/run_command.hpp"
 #include "support/run_file.hpp"
 #include "support/same_run.hpp"
-#include "support/sim_server_driver.hpp"
-#include "support/temp_dir_test.hpp"
+#include "support/step_controller_test.hpp"
 
 #ifndef SIM_SERVER_PATH
 #error "SIM_SERVER_PATH must name the sim_server executable"
@@ -31,66 +29,22 @@
 namespace tongue::controller {
 namespace {
 
-namespace fs = std::filesystem;
 using testing::bus_url;
 using testing::ChildProcess;
+using testing::logged;
+using testing::Schedule;
 using testing::ServerController;
+constexpr int kSteps = testing::kControllerSteps;
+constexpr int kRunWaitMs = 20000;  // a whole run of 12 box steps, Lua start-up included
 
-constexpr int kSteps = 12;
-constexpr int kRunWaitMs = 20000;      // a whole run of 12 box steps, Lua start-up included
-using Schedule = std::vector<double>;  // a muscle's level for steps 1 .. kSteps
-
-class LuaController : public testing::TempDirTest {
+class LuaController : public testing::StepControllerTest {
  protected:
-  // Starts one Lua controller (args after the bus options) and waits until it listens, so that
-  // a server started next cannot publish anything before it is subscribed.
+  LuaController() : StepControllerTest(LUA_STEP_CONTROLLER_PATH, kRunWaitMs, "10000") {}
   std::unique_ptr<ChildProcess> start_lua(const std::string& url, const std::string& name,
                                           const std::vector<std::string>& args) {
-    std::vector<std::string> all{"--lcm-url", url, "--timeout-ms", "10000"};
-    all.insert(all.end(), args.begin(), args.end());
-    auto lua = std::make_unique<ChildProcess>(LUA_STEP_CONTROLLER_PATH, all, dir_, name);
-    EXPECT_TRUE(lua->started());
-    EXPECT_TRUE(lua->wait_stderr("listening on")) << lua->stderr_text();
-    return lua;
-  }
-  std::unique_ptr<ChildProcess> start_server(const std::string& url, const std::string& run,
-                                             const std::vector<std::string>& extra = {}) {
-    std::vector<std::string> args{(dir_ / "scene.yaml").string(),
-                                  "--lcm-url",
-                                  url,
-                                  "--output",
-                                  (dir_ / (run + ".h5")).string(),
-                                  "--max-steps",
-                                  std::to_string(kSteps)};
-    args.insert(args.end(), extra.begin(), extra.end());
-    auto server = std::make_unique<ChildProcess>(SIM_SERVER_PATH, args, dir_, run);
-    EXPECT_TRUE(server->started());
-    return server;
-  }
-  // The C++ driver's run: one controller sending, for every step, the levels of the schedules.
-  void run_cpp_driver(int port, const std::vector<std::string>& muscles,
-                      const std::vector<Schedule>& schedules) {
-    const std::string url = bus_url(port);
-    ServerController controller(url);
-    ASSERT_TRUE(controller.good());
-    auto server = start_server(url, "cpp");
-    for (int k = 0; k < kSteps; ++k) {
-      ASSERT_TRUE(controller.wait_step(k)) << server->stderr_text();
-      std::vector<double> levels;
-      for (const Schedule& s : schedules) levels.push_back(s[k]);
-      controller.send_activation(k + 1, muscles, levels);
-    }
-    ASSERT_EQ(server->wait_exit(kRunWaitMs), 0) << server->stderr_text();
+    return start_controller(url, name, args);
   }
 };
-
-// The logged activations of a run of these schedules: frame 0 all 0, frame k the levels of step k.
-std::vector<double> logged(const std::vector<Schedule>& schedules) {
-  std::vector<double> out(schedules.size(), 0.0);
-  for (int k = 0; k < kSteps; ++k)
-    for (const Schedule& s : schedules) out.push_back(s[k]);
-  return out;
-}
 
 TEST_F(LuaController, DrivesTheServerAsTheCppDriverDoes) {
   write("scene.yaml", testing::kBoxScene);
@@ -130,7 +84,7 @@ TEST_F(LuaController, TwoInstancesOnePerMuscleWithTwoControllers) {
         start_lua(url, "lua_flexor", {"--max-steps", steps, "flexor=0.6@0.004:0.014"});
     auto lua_extensor = start_lua(
         url, "lua_extensor", {"--max-steps", steps, "extensor=0.4@0:0.008", "extensor=1@0.016"});
-    auto server = start_server(url, "lua_run", {"--controllers", "2"});
+    auto server = start_server(url, "lua_run", kSteps, {"--controllers", "2"});
     ASSERT_EQ(server->wait_exit(kRunWaitMs), 0) << server->stderr_text();
     ASSERT_EQ(lua_flexor->wait_exit(kRunWaitMs), 0) << lua_flexor->stderr_text();
     ASSERT_EQ(lua_extensor->wait_exit(kRunWaitMs), 0) << lua_extensor->stderr_text();
@@ -150,7 +104,7 @@ TEST_F(LuaController, TheOneRejectedForAnOverlapIsToldWhy) {
   auto first = start_lua(url, "first", {"flexor=0.5"});
   auto second = start_lua(url, "second", {"flexor=0.7"});
   auto server = start_server(
-      url, "run", {"--controllers", "2", "--timeout-ms", "3000", "--on-silence", "stop"});
+      url, "run", kSteps, {"--controllers", "2", "--timeout-ms", "3000", "--on-silence", "stop"});
   EXPECT_EQ(server->wait_exit(kRunWaitMs), 3) << server->stderr_text();
   // The rejected one has said so by now; the other waits until its own timeout.
   const std::string told = "the server rejected its activation for step 1";
@@ -174,12 +128,7 @@ TEST_F(LuaController, ReproducesSimBatchOnTheTongue) {
   ASSERT_NE(scene.find(duration), std::string::npos);
   scene.replace(scene.find(duration), duration.size(), "duration: 0.02 ");
   write("scene.yaml", scene);
-  const testing::RunResult batch =
-      testing::run_command(SIM_BATCH_PATH,
-                           "'" + (dir_ / "scene.yaml").string() + "' --quiet --output '" +
-                               (dir_ / "batch.h5").string() + "'",
-                           dir_);
-  ASSERT_EQ(batch.exit_code, 0) << batch.err;
+  ASSERT_NO_FATAL_FAILURE(run_sim_batch());
   {
     const std::string url = bus_url(7855);
     auto lua = start_lua(url, "lua",
