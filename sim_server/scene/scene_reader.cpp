@@ -13,6 +13,7 @@
 #include "model/ansys_muscle_macros.hpp"
 #include "model/default_tongue.hpp"
 #include "model/tongue_muscles.hpp"
+#include "scene/external_points_file.hpp"
 #include "scene/node_list_file.hpp"
 
 namespace tongue::scene {
@@ -568,7 +569,16 @@ class Parser : private common::YamlReader {
         existing_file(required(m, m_path, "fibres"), child_path(m_path, "fibres"), "fibres");
     spec.max_force = existing_file(required(m, m_path, "max_force"),
                                    child_path(m_path, "max_force"), "max-force");
-    if (const auto e = m["external_points"]; present(e)) {
+    if (const auto e = m["external_points"]; present(e) && e.IsScalar()) {
+      // A file of "id x y z" lines (m), e.g. next to the macros.
+      const std::string e_path = child_path(m_path, "external_points");
+      const std::string file = existing_file(e, e_path, "external points");
+      try {
+        spec.external_points = read_external_points(file);
+      } catch (const std::runtime_error& error) {
+        fail(e_path, error.what(), e);
+      }
+    } else if (present(e)) {
       const std::string e_path = child_path(m_path, "external_points");
       expect_map(e, e_path);
       for (auto it = e.begin(); it != e.end(); ++it) {

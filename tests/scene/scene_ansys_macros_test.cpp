@@ -165,6 +165,29 @@ TEST_F(SceneAnsysMacros, BuildsTheSameMusclesAsTheHandWrittenScene) {
   EXPECT_DOUBLE_EQ(imported.activations.steps()[0].level, 3.0 / 24.0);
 }
 
+// external_points may name a file of "id x y z" lines (m) instead of listing them.
+TEST_F(SceneAnsysMacros, ExternalPointsFromAFile) {
+  write("bone.txt", "# id x y z [m]\r\n4037, -0.07, 0.075, 0.04 ! the styloid\r\n\r\n");
+  std::string from_file = kImported;
+  const std::string listed = "external_points: {4037: [-0.07, 0.075, 0.04]}";
+  from_file.replace(from_file.find(listed), listed.size(), "external_points: bone.txt");
+  const BuiltScene a = build_scene(scene(kImported));
+  const BuiltScene b = build_scene(scene(from_file));
+  ASSERT_EQ(b.muscles->muscles().size(), a.muscles->muscles().size());
+  const auto& fa = a.muscles->muscles()[0].fibres;
+  const auto& fb = b.muscles->muscles()[0].fibres;
+  ASSERT_EQ(fb.size(), fa.size());
+  for (std::size_t f = 0; f < fa.size(); ++f) {
+    ASSERT_TRUE(fb[f].origin.has_value());
+    EXPECT_EQ(*fb[f].origin, *fa[f].origin);
+    EXPECT_EQ(fb[f].nodes, fa[f].nodes);
+  }
+  write("bad_bone.txt", "4037 -0.07 0.075\n");
+  from_file.replace(from_file.find("bone.txt"), 8, "bad_bone.txt");
+  expect_error(from_file, "muscles.ansys_macros.external_points",
+               "bad_bone.txt, line 1: expected 'id x y z'");
+}
+
 TEST_F(SceneAnsysMacros, NodeListNumberings) {
   write("jaw0.txt", "0 5 10 15\n");
   write("jaw_ids.txt", "# ids\n1\n6\n11\n16\n");
