@@ -26,7 +26,8 @@ void check_weight(const Muscle& muscle, size_t f) {
 
 }  // namespace
 
-void validate(const Muscle& muscle, int num_nodes, int num_elements) {
+void validate(const Muscle& muscle, int num_nodes, int num_elements,
+              const fem::MeshNumbering& numbering) {
   if (muscle.name.empty()) fail(muscle, "the name is empty");
   if (!std::isfinite(muscle.max_force) || muscle.max_force < 0.0) {
     fail(muscle,
@@ -34,8 +35,7 @@ void validate(const Muscle& muscle, int num_nodes, int num_elements) {
   }
   for (int e : muscle.elements) {
     if (e < 0 || e >= num_elements) {
-      fail(muscle,
-           "element " + std::to_string(e) + " is outside 0.." + std::to_string(num_elements - 1));
+      fail(muscle, numbering.element(e) + " is outside 0.." + std::to_string(num_elements - 1));
     }
   }
   if (muscle.fibres.empty()) fail(muscle, "has no fibres");
@@ -53,11 +53,11 @@ void validate(const Muscle& muscle, int num_nodes, int num_elements) {
     for (size_t i = 0; i < fibre.nodes.size(); ++i) {
       const int n = fibre.nodes[i];
       if (n < 0 || n >= num_nodes) {
-        fail(muscle, fibre_label(f) + ": node " + std::to_string(n) + " is outside 0.." +
+        fail(muscle, fibre_label(f) + ": " + numbering.node(n) + " is outside 0.." +
                          std::to_string(num_nodes - 1));
       }
       if (i > 0 && n == fibre.nodes[i - 1]) {
-        fail(muscle, fibre_label(f) + ": node " + std::to_string(n) +
+        fail(muscle, fibre_label(f) + ": " + numbering.node(n) +
                          " repeats consecutively (zero-length segment)");
       }
     }

@@ -7,6 +7,7 @@
 #include <utility>
 #include <vector>
 
+#include "fem/mesh/mesh_numbering.hpp"
 #include "fem/types.hpp"
 
 namespace tongue::model {
@@ -32,8 +33,10 @@ inline constexpr double kWeightSumTolerance = 1e-9;
 // outside [0, num_nodes) or [0, num_elements); a node repeats consecutively (a zero-length
 // segment has no direction); an origin is not finite; a weight is not finite and positive; the
 // weights do not sum to 1 within kWeightSumTolerance (see normalize_weights); max_force is
-// negative or not finite.
-void validate(const Muscle& muscle, int num_nodes, int num_elements);
+// negative or not finite. Nodes and elements are named as numbering has them (the mesh file's ids
+// with their index, for an imported mesh).
+void validate(const Muscle& muscle, int num_nodes, int num_elements,
+              const fem::MeshNumbering& numbering = {});
 
 // Scales the fibre weights so that they sum to 1. Throws std::invalid_argument naming the muscle
 // when it has no fibres or a weight is not finite and positive.

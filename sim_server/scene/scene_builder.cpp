@@ -280,7 +280,7 @@ class Builder {
       }
       try {
         model::normalize_weights(m);
-        model::validate(m, mesh.num_nodes(), mesh.num_elements());
+        model::validate(m, mesh.num_nodes(), mesh.num_elements(), numbering());
       } catch (const std::invalid_argument& e) {
         fail(path, e.what());
       }

@@ -327,6 +327,21 @@ muscles:
   EXPECT_EQ(built.solid->mesh().element_set("m"), (std::vector<int>{1}));
 }
 
+// The muscle checks name the nodes of an imported mesh by the file's ids, with their index.
+TEST_F(AnsysScene, MuscleMessagesNameNodesByFileIds) {
+  try {
+    build_scene(scene(R"(
+muscles:
+  - {name: m, max_force: 2, elements: [2], fibres: [{nodes: [100, 101, 101, 102]}]}
+)"));
+    FAIL() << "no SceneError";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("node 101 (index 1) repeats consecutively"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
 TEST_F(AnsysScene, UnknownMuscleElementId) {
   try {
     build_scene(scene(R"(
