@@ -4,6 +4,26 @@
 #include <utility>
 
 namespace tongue::python {
+namespace {
+
+// The stop check of one call, for the session to ask while the call lasts (and not after, when
+// the check is gone).
+class StopScope {
+ public:
+  StopScope(const controller::ControlSession::StopCheck*& slot,
+            const controller::ControlSession::StopCheck& stop)
+      : slot_(slot) {
+    slot_ = &stop;
+  }
+  ~StopScope() { slot_ = nullptr; }
+  StopScope(const StopScope&) = delete;
+  StopScope& operator=(const StopScope&) = delete;
+
+ private:
+  const controller::ControlSession::StopCheck*& slot_;
+};
+
+}  // namespace
 
 BusClient::BusClient(const std::string& program, const controller::CommonOptions& options)
     : program_(program), session_(program, options, [this]() -> std::optional<std::string> {
@@ -12,9 +32,8 @@ BusClient::BusClient(const std::string& program, const controller::CommonOptions
       }) {}
 
 const controller::Model* BusClient::connect(const controller::ControlSession::StopCheck& stop) {
-  stop_ = &stop;
+  const StopScope scope(stop_, stop);
   model_ = session_.wait_for_model();
-  stop_ = nullptr;
   return model_;
 }
 
@@ -22,15 +41,11 @@ std::optional<controller::State> BusClient::next(
     const controller::ControlSession::StopCheck& stop) {
   if (model_ == nullptr && !session_.ended() && connect(stop) == nullptr) return std::nullopt;
   if (queued_.empty()) {
-    stop_ = &stop;
     std::optional<controller::NewStates> fresh;
-    try {
+    {
+      const StopScope scope(stop_, stop);
       fresh = session_.next_states();
-    } catch (...) {
-      stop_ = nullptr;
-      throw;
     }
-    stop_ = nullptr;
     if (!fresh) return std::nullopt;
     awaiting_ = fresh->answer_step.has_value();
     // A batch without new states: the session ended after the last one, or (repeats alone) it
