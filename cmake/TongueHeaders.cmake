@@ -4,8 +4,8 @@
 # headers and nothing else: each PATH (a folder or a header, relative to the tree the target lives
 # in, sim_server/ or controllers/; by default the target's own folder) appears there under the
 # same relative path, so that "fem/mesh/mesh.hpp" is found by what links fem_mesh and by nothing
-# else. An include across the layers then fails to compile where it is written (the Layering
-# tests name the rule it breaks).
+# else (viewer/ lives at the top: its headers are "viewer/<name>.hpp"). An include across the
+# layers then fails to compile where it is written (the Layering tests name the rule it breaks).
 function(tongue_headers target)
   set(paths ${ARGN})
   set(tree_dir "")
@@ -15,9 +15,16 @@ function(tongue_headers target)
       set(tree_dir "${PROJECT_SOURCE_DIR}/${tree}")
     endif()
   endforeach()
+  # A top-level folder of its own (viewer/) is named from the project root: "viewer/frame.hpp".
+  foreach(top viewer)
+    string(FIND "${CMAKE_CURRENT_SOURCE_DIR}/" "${PROJECT_SOURCE_DIR}/${top}/" at)
+    if(at EQUAL 0)
+      set(tree_dir "${PROJECT_SOURCE_DIR}")
+    endif()
+  endforeach()
   if(tree_dir STREQUAL "")
     message(FATAL_ERROR "tongue_headers(${target}): ${CMAKE_CURRENT_SOURCE_DIR} is not under "
-                        "sim_server/ or controllers/")
+                        "sim_server/, controllers/ or viewer/")
   endif()
   if(NOT paths)
     file(RELATIVE_PATH own "${tree_dir}" "${CMAKE_CURRENT_SOURCE_DIR}")

@@ -52,10 +52,11 @@ bool state_layout(WireReader& in, StateCounts& c, std::string& reason) {
 
 // The layout of lcmt_tongue_model after the fingerprint (lcmtypes/lcmt_tongue_model.lcm).
 struct ModelCounts {
-  std::int32_t nodes = 0, rest = 0, elements = 0, element_nodes = 0;
+  std::int32_t nodes = 0, rest = 0, elements = 0, element_nodes = 0, fibres = 0, fibre_offsets = 0,
+               fibre_origins = 0, obstacles = 0, vertex_values = 0, triangle_values = 0;
 };
 bool model_layout(WireReader& in, ModelCounts& c, std::string& reason) {
-  std::int32_t muscles = 0, landmarks = 0, obstacles = 0;
+  std::int32_t muscles = 0, landmarks = 0, fibre_nodes = 0;
   return in.fixed("utime", kInt64, reason) && in.count("num_nodes", 0, c.nodes, reason) &&
          in.count("num_rest_positions", kDouble, c.rest, reason) &&
          in.fixed("rest_positions", std::int64_t{kDouble} * c.rest, reason) &&
@@ -69,8 +70,24 @@ bool model_layout(WireReader& in, ModelCounts& c, std::string& reason) {
          in.strings("landmark_names", landmarks, reason) &&
          in.fixed("landmark_nodes", std::int64_t{kInt32} * landmarks, reason) &&
          in.fixed("dt", kDouble, reason) && in.string("scene", reason) &&
-         in.count("num_obstacles", kMinString, obstacles, reason) &&
-         in.strings("obstacle_names", obstacles, reason) && in.at_end(reason);
+         in.count("num_obstacles", kMinString + 2 * kInt32, c.obstacles, reason) &&
+         in.strings("obstacle_names", c.obstacles, reason) &&
+         in.count("num_fibres", kInt32 + kBoolean, c.fibres, reason) &&
+         in.fixed("fibre_muscles", std::int64_t{kInt32} * c.fibres, reason) &&
+         in.count("num_fibre_offsets", kInt32, c.fibre_offsets, reason) &&
+         in.fixed("fibre_offsets", std::int64_t{kInt32} * c.fibre_offsets, reason) &&
+         in.count("num_fibre_nodes", kInt32, fibre_nodes, reason) &&
+         in.fixed("fibre_nodes", std::int64_t{kInt32} * fibre_nodes, reason) &&
+         in.fixed("fibre_has_origin", std::int64_t{kBoolean} * c.fibres, reason) &&
+         in.count("num_fibre_origins", kDouble, c.fibre_origins, reason) &&
+         in.fixed("fibre_origins", std::int64_t{kDouble} * c.fibre_origins, reason) &&
+         in.fixed("obstacle_vertex_counts, obstacle_triangle_counts",
+                  std::int64_t{2 * kInt32} * c.obstacles, reason) &&
+         in.count("num_obstacle_vertex_values", kDouble, c.vertex_values, reason) &&
+         in.fixed("obstacle_vertices", std::int64_t{kDouble} * c.vertex_values, reason) &&
+         in.count("num_obstacle_triangle_values", kInt32, c.triangle_values, reason) &&
+         in.fixed("obstacle_triangles", std::int64_t{kInt32} * c.triangle_values, reason) &&
+         in.at_end(reason);
 }
 
 }  // namespace
@@ -105,7 +122,7 @@ bool decode_model(const void* data, int size, tongue_lcm::lcmt_tongue_model& out
                   std::string& reason) {
   const std::string what = "lcmt_tongue_model: ";
   // The shortest model: nothing in it, an empty scene.
-  constexpr int kShortest = kInt64 * 2 + kInt32 * 7 + kDouble + kMinString;
+  constexpr int kShortest = kInt64 * 2 + kInt32 * 13 + kDouble + kMinString;
   WireReader in(data, size);
   if (!start_message(in, tongue_lcm::lcmt_tongue_model::getHash(), kShortest, what, reason))
     return false;
@@ -115,8 +132,21 @@ bool decode_model(const void* data, int size, tongue_lcm::lcmt_tongue_model& out
     return false;
   }
   if (!relation(what, "num_rest_positions", c.rest, "num_nodes", c.nodes, 3, reason) ||
-      !relation(what, "num_element_nodes", c.element_nodes, "num_elements", c.elements, 8, reason))
+      !relation(what, "num_element_nodes", c.element_nodes, "num_elements", c.elements, 8,
+                reason) ||
+      !relation(what, "num_fibre_origins", c.fibre_origins, "num_fibres", c.fibres, 3, reason))
     return false;
+  if (c.fibre_offsets != (c.fibres > 0 ? c.fibres + 1 : 0)) {
+    reason = what + "num_fibre_offsets = " + std::to_string(c.fibre_offsets) +
+             " is not num_fibres + 1 (" + std::to_string(c.fibres + 1) + ")";
+    return false;
+  }
+  if (c.vertex_values % 3 != 0 || c.triangle_values % 3 != 0) {
+    reason = what + "num_obstacle_vertex_values (" + std::to_string(c.vertex_values) +
+             ") and num_obstacle_triangle_values (" + std::to_string(c.triangle_values) +
+             ") must be multiples of 3";
+    return false;
+  }
   return checked_decode(data, size, out, what, reason);
 }
 

@@ -1,6 +1,8 @@
 #include "server/state_message.hpp"
 
+#include "fem/contact/obstacle.hpp"
 #include "model/default_tongue.hpp"
+#include "model/muscle.hpp"
 
 namespace tongue::server {
 namespace {
@@ -14,12 +16,34 @@ void assign(std::vector<double>& out, const fem::Vector& v) {
   out.assign(v.data(), v.data() + v.size());
 }
 
+// Fibre f of a muscle into the model's fibre columns (the first one opens the offsets).
+void add_fibre(tongue_lcm::lcmt_tongue_model& msg, std::int32_t muscle, const model::Fibre& f) {
+  if (msg.fibre_offsets.empty()) msg.fibre_offsets.push_back(0);
+  msg.fibre_muscles.push_back(muscle);
+  msg.fibre_nodes.insert(msg.fibre_nodes.end(), f.nodes.begin(), f.nodes.end());
+  msg.fibre_offsets.push_back(static_cast<std::int32_t>(msg.fibre_nodes.size()));
+  msg.fibre_has_origin.push_back(f.origin.has_value());
+  const fem::Vec3 origin = f.origin.value_or(fem::Vec3::Zero());
+  msg.fibre_origins.insert(msg.fibre_origins.end(), {origin.x(), origin.y(), origin.z()});
+}
+
+void add_obstacle(tongue_lcm::lcmt_tongue_model& msg, const fem::Obstacle& obstacle) {
+  const fem::TriangleSurface& surface = obstacle.surface();
+  msg.obstacle_names.push_back(obstacle.name());
+  msg.obstacle_vertex_counts.push_back(static_cast<std::int32_t>(surface.vertices.size()));
+  msg.obstacle_triangle_counts.push_back(static_cast<std::int32_t>(surface.triangles.size()));
+  for (const fem::Vec3& v : surface.vertices)
+    msg.obstacle_vertices.insert(msg.obstacle_vertices.end(), {v.x(), v.y(), v.z()});
+  for (const auto& t : surface.triangles)
+    msg.obstacle_triangles.insert(msg.obstacle_triangles.end(), t.begin(), t.end());
+}
+
 }  // namespace
 
 tongue_lcm::lcmt_tongue_model model_message(const scene_run::SceneRun& run, std::int64_t utime) {
   const scene::BuiltScene& built = run.built();
   const fem::Mesh& mesh = built.solid->mesh();
-  tongue_lcm::lcmt_tongue_model msg;
+  tongue_lcm::lcmt_tongue_model msg{};
   msg.utime = utime;
   msg.num_nodes = mesh.num_nodes();
   msg.rest_positions = values(built.solid->rest_positions());
@@ -30,11 +54,17 @@ tongue_lcm::lcmt_tongue_model model_message(const scene_run::SceneRun& run, std:
   msg.num_element_nodes = static_cast<std::int32_t>(msg.elements.size());
   if (built.muscles) {
     for (const auto& m : built.muscles->muscles()) {
+      const auto muscle = static_cast<std::int32_t>(msg.muscle_names.size());
       msg.muscle_names.push_back(m.name);
       msg.muscle_max_forces.push_back(m.max_force);
+      for (const auto& f : m.fibres) add_fibre(msg, muscle, f);
     }
   }
   msg.num_muscles = static_cast<std::int32_t>(msg.muscle_names.size());
+  msg.num_fibres = static_cast<std::int32_t>(msg.fibre_muscles.size());
+  msg.num_fibre_offsets = static_cast<std::int32_t>(msg.fibre_offsets.size());
+  msg.num_fibre_nodes = static_cast<std::int32_t>(msg.fibre_nodes.size());
+  msg.num_fibre_origins = static_cast<std::int32_t>(msg.fibre_origins.size());
   for (const std::string& name : model::landmark_names()) {
     const auto it = mesh.node_sets.find(name);
     if (it == mesh.node_sets.end() || it->second.empty()) continue;
@@ -45,9 +75,10 @@ tongue_lcm::lcmt_tongue_model model_message(const scene_run::SceneRun& run, std:
   msg.dt = run.scene().analysis.dt;
   msg.scene = run.scene().text;
   if (built.contact)
-    for (const auto& obstacle : built.contact->obstacles())
-      msg.obstacle_names.push_back(obstacle->name());
+    for (const auto& obstacle : built.contact->obstacles()) add_obstacle(msg, *obstacle);
   msg.num_obstacles = static_cast<std::int32_t>(msg.obstacle_names.size());
+  msg.num_obstacle_vertex_values = static_cast<std::int32_t>(msg.obstacle_vertices.size());
+  msg.num_obstacle_triangle_values = static_cast<std::int32_t>(msg.obstacle_triangles.size());
   return msg;
 }
 

@@ -91,7 +91,7 @@ TEST(LcmtypesRoundTrip, State) {
 }
 
 TEST(LcmtypesRoundTrip, Model) {
-  tongue_lcm::lcmt_tongue_model msg;
+  tongue_lcm::lcmt_tongue_model msg{};
   msg.utime = 99;
   msg.num_nodes = 8;
   msg.num_rest_positions = 24;
@@ -108,6 +108,23 @@ TEST(LcmtypesRoundTrip, Model) {
   msg.landmark_nodes = {5};
   msg.dt = 0.001;
   msg.scene = "mesh:\n  box: {size: [0.01, 0.01, 0.01]}\n";
+  msg.num_obstacles = 1;
+  msg.obstacle_names = {"floor"};
+  msg.num_fibres = 2;
+  msg.fibre_muscles = {0, 1};
+  msg.num_fibre_offsets = 3;
+  msg.fibre_offsets = {0, 2, 3};
+  msg.num_fibre_nodes = 3;
+  msg.fibre_nodes = {0, 4, 7};
+  msg.fibre_has_origin = {false, true};
+  msg.num_fibre_origins = 6;
+  msg.fibre_origins = {0.0, 0.0, 0.0, 0.01, -0.02, 0.0};
+  msg.obstacle_vertex_counts = {3};
+  msg.obstacle_triangle_counts = {1};
+  msg.num_obstacle_vertex_values = 9;
+  msg.obstacle_vertices = {0.0, -0.01, 0.0, 0.01, -0.01, 0.0, 0.0, -0.01, 0.01};
+  msg.num_obstacle_triangle_values = 3;
+  msg.obstacle_triangles = {0, 2, 1};
   const auto out = round_trip(msg);
   EXPECT_EQ(out.utime, msg.utime);
   EXPECT_EQ(out.num_nodes, msg.num_nodes);
@@ -124,6 +141,16 @@ TEST(LcmtypesRoundTrip, Model) {
   EXPECT_EQ(out.landmark_nodes, msg.landmark_nodes);
   EXPECT_EQ(out.dt, msg.dt);
   EXPECT_EQ(out.scene, msg.scene);
+  EXPECT_EQ(out.obstacle_names, msg.obstacle_names);
+  EXPECT_EQ(out.fibre_muscles, msg.fibre_muscles);
+  EXPECT_EQ(out.fibre_offsets, msg.fibre_offsets);
+  EXPECT_EQ(out.fibre_nodes, msg.fibre_nodes);
+  EXPECT_EQ(out.fibre_has_origin, msg.fibre_has_origin);
+  EXPECT_EQ(out.fibre_origins, msg.fibre_origins);
+  EXPECT_EQ(out.obstacle_vertex_counts, msg.obstacle_vertex_counts);
+  EXPECT_EQ(out.obstacle_triangle_counts, msg.obstacle_triangle_counts);
+  EXPECT_EQ(out.obstacle_vertices, msg.obstacle_vertices);
+  EXPECT_EQ(out.obstacle_triangles, msg.obstacle_triangles);
 }
 
 TEST(LcmtypesRoundTrip, Command) {

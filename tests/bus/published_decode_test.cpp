@@ -69,6 +69,21 @@ lcmt_tongue_model a_model() {
   m.scene = "mesh: {}";
   m.num_obstacles = 1;
   m.obstacle_names = {"hard_palate"};
+  m.num_fibres = 1;
+  m.fibre_muscles = {1};
+  m.num_fibre_offsets = 2;
+  m.fibre_offsets = {0, 1};
+  m.num_fibre_nodes = 1;
+  m.fibre_nodes = {0};
+  m.fibre_has_origin = {true};
+  m.num_fibre_origins = 3;
+  m.fibre_origins = {0.0, -0.01, 0.0};
+  m.obstacle_vertex_counts = {3};
+  m.obstacle_triangle_counts = {1};
+  m.num_obstacle_vertex_values = 9;
+  m.obstacle_vertices = {0.0, 0.02, 0.0, 0.01, 0.02, 0.0, 0.0, 0.02, 0.01};
+  m.num_obstacle_triangle_values = 3;
+  m.obstacle_triangles = {0, 1, 2};
   return m;
 }
 
@@ -212,6 +227,27 @@ TEST(DecodeModel, RestPositionsAndElementsMustFitTheirCounts) {
   m.num_elements = 2;
   EXPECT_FALSE(model_decodes(encoded(m), reason));
   EXPECT_NE(reason.find("num_element_nodes"), std::string::npos) << reason;
+}
+
+TEST(DecodeModel, FibresAndObstacleSurfacesMustFitTheirCounts) {
+  lcmt_tongue_model m = a_model();
+  std::string reason;
+  m.num_fibre_origins = 6;
+  m.fibre_origins.resize(6);
+  EXPECT_FALSE(model_decodes(encoded(m), reason));
+  EXPECT_NE(reason.find("num_fibre_origins = 6 is not 3 * num_fibres (1)"), std::string::npos)
+      << reason;
+  m = a_model();
+  m.num_fibre_offsets = 1;
+  m.fibre_offsets = {0};
+  EXPECT_FALSE(model_decodes(encoded(m), reason));
+  EXPECT_NE(reason.find("num_fibre_offsets = 1 is not num_fibres + 1 (2)"), std::string::npos)
+      << reason;
+  m = a_model();
+  m.num_obstacle_triangle_values = 2;
+  m.obstacle_triangles = {0, 1};
+  EXPECT_FALSE(model_decodes(encoded(m), reason));
+  EXPECT_NE(reason.find("must be multiples of 3"), std::string::npos) << reason;
 }
 
 TEST(DecodeModel, NegativeNodeCountFails) {
