@@ -146,7 +146,11 @@
     return state.runs.reduce(function (chain, run, r) {
       return chain.then(function () {
         return TongueApi.model(r).then(function (json) {
-          models.push(TongueModel.prepare(json));
+          try {
+            models.push(TongueModel.prepare(json));
+          } catch (e) {
+            throw new Error("/api/model?run=" + r + " (" + run.name + "): " + e.message);
+          }
         }).catch(function (err) {
           if (r === 0) throw err;
           showError(new Error("run 1 (" + run.name + ") left out: " + err.message));
@@ -171,7 +175,11 @@
         var shown = state.frames[r];
         if (shown && shown.index === index) return;
         return TongueApi.frame(r, index).then(function (json) {
-          got[r] = TongueModel.readFrame(state.models[r], json, null);
+          try {
+            got[r] = TongueModel.readFrame(state.models[r], json, null);
+          } catch (e) {
+            throw new Error("run " + r + ", frame " + index + ": " + e.message);
+          }
           got[r].index = index;
         });
       });
