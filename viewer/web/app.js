@@ -33,7 +33,8 @@
     frames: [],            // the frames drawn, one per run
     framesDrawn: 0,
     modelVersion: null,
-    error: null            // the last error shown, cleared by the next good frame
+    error: null,           // the last error shown, cleared by the next good frame
+    fault: null            // a lasting problem of the page itself (no 3D view), shown with every status
   };
 
   var readyResolve, readyReject;
@@ -61,9 +62,14 @@
 
   function setupViews() {
     try {
+      if (typeof THREE === "undefined" || !THREE.OrbitControls) throw new Error("three.js did not load from /three/");
       view3d = new Surface3D.View3D($("pane3d"), $("view3d"), $("legend"));
     } catch (e) {
-      showError(new Error("no 3D view: WebGL is not available (" + e.message + ")"));
+      // the page goes on with the 2D view; the reason stays in the 3D pane and the status line
+      state.fault = "no 3D view: " + (/WebGL/i.test(e.message) ? "WebGL is not available" : e.message);
+      $("legend").textContent = state.fault;
+      $("legend").className = "fault";
+      showError(new Error(state.fault));
       view3d = null;
     }
     view2d = new Midsagittal.View2D($("pane2d"), $("view2d"));
@@ -126,6 +132,7 @@
     if (f.contactNodes.length) parts.push(f.contactNodes.length + " nodes in contact, max penetration " + (f.maxPenetration * 1000).toFixed(2) + " mm");
     if (state.mode === "live" && f.dropped) parts.push(f.dropped + " states not shown");
     state.error = null;
+    if (state.fault) { panel.setStatus(parts.join(" · ") + " · " + state.fault, "error"); return; }
     panel.setStatus(parts.join(" · "), (f.status && f.status !== "ok") || !f.converged ? "warn" : "ok");
   }
 
