@@ -52,9 +52,10 @@ var Midsagittal = (function () {
     var xs = [], ys = [];
     this.runs = models.map(function (m, r) {
       var run = { model: m, rest: section(m.rest, m.surfaceTriangles, m.midZ), obstacles: [] };
-      if (this.side || r === 0) {
-        run.obstacles = m.obstacles.map(function (o) { return section(o.vertices, o.triangles, m.midZ); });
-      }
+      // each obstacle once per pane: overlaid runs of one scene share theirs
+      var drawn = this.side || r === 0 ? [] : models[0].obstacles.map(function (o) { return o.name; });
+      run.obstacles = m.obstacles.filter(function (o) { return drawn.indexOf(o.name) < 0; })
+        .map(function (o) { return section(o.vertices, o.triangles, m.midZ); });
       [run.rest].concat(run.obstacles).forEach(function (segs) {
         for (var i = 0; i < segs.length; i += 2) { xs.push(segs[i]); ys.push(segs[i + 1]); }
       });
@@ -137,7 +138,8 @@ var Midsagittal = (function () {
       strokeSegments(ctx, section(frame.positions, m.surfaceTriangles, m.midZ), tx, ty);
 
       var x = frame.positions;
-      frame.contactNodes.forEach(function (n) { dot(ctx, tx(x[3 * n]), ty(x[3 * n + 1]), 2.5, CONTACT); });
+      var contact = overlay ? Colormap.css(Colormap.SECOND_RUN) : CONTACT;
+      frame.contactNodes.forEach(function (n) { dot(ctx, tx(x[3 * n]), ty(x[3 * n + 1]), 2.5, contact); });
       ctx.font = "11px sans-serif";
       m.landmarks.forEach(function (l) {
         var px = tx(x[3 * l.node]), py = ty(x[3 * l.node + 1]);

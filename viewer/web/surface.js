@@ -256,8 +256,13 @@ var Surface3D = (function () {
       var pane = this.panes[this.side ? r : 0];
       pane.scene.add(mesh.group);
       pane.runs.push(mesh);
-      // obstacles once per pane: an overlaid run shares the first run's scene
-      if (this.side || r === 0) m.obstacles.forEach(function (o) { pane.scene.add(obstacleMesh(o)); });
+      // each obstacle once per pane: overlaid runs of one scene share theirs
+      pane.obstacleNames = pane.obstacleNames || [];
+      m.obstacles.forEach(function (o) {
+        if (pane.obstacleNames.indexOf(o.name) >= 0) return;
+        pane.obstacleNames.push(o.name);
+        pane.scene.add(obstacleMesh(o));
+      });
       return mesh;
     }, this);
 
