@@ -62,8 +62,10 @@ var Midsagittal = (function () {
       return run;
     }, this);
     if (!xs.length) models.forEach(function (m) { xs.push(m.box.min[0], m.box.max[0]); ys.push(m.box.min[1], m.box.max[1]); });
-    this.fit = { x0: Math.min.apply(null, xs), x1: Math.max.apply(null, xs),
-                 y0: Math.min.apply(null, ys), y1: Math.max.apply(null, ys) };
+    // room around the rest shape and the obstacles for where the tongue goes (~1 cm each side)
+    var x0 = Math.min.apply(null, xs), x1 = Math.max.apply(null, xs), y0 = Math.min.apply(null, ys), y1 = Math.max.apply(null, ys);
+    var pad = 0.12 * Math.max(x1 - x0, y1 - y0);
+    this.fit = { x0: x0 - pad, x1: x1 + pad, y0: y0 - pad, y1: y1 + pad };
     this.resize();
   };
 
@@ -101,20 +103,23 @@ var Midsagittal = (function () {
     ctx.clearRect(0, 0, W, H);
     ctx.fillStyle = "#fbfbf8"; ctx.fillRect(0, 0, W, H);
     if (!this.runs.length || !this.fit) return;
-    var panes = this.side ? 2 : 1, paneW = W / panes;
-    for (var p = 0; p < panes; p++) this.drawPane(p, p * paneW, paneW, H);
+    if (!this.side) { this.drawPane(0, 0, 0, W, H); return; }
+    // two runs side by side, or one above the other when the view is narrow
+    if (W >= H) { this.drawPane(0, 0, 0, W / 2, H); this.drawPane(1, W / 2, 0, W / 2, H); }
+    else { this.drawPane(0, 0, 0, W, H / 2); this.drawPane(1, 0, H / 2, W, H / 2); }
   };
 
-  View2D.prototype.drawPane = function (pane, left, W, H) {
+  View2D.prototype.drawPane = function (pane, left, top, W, H) {
     var ctx = this.ctx, f = this.fit, margin = 24;
     var scale = Math.min((W - 2 * margin) / (f.x1 - f.x0 || 1e-3), (H - 2 * margin - 28) / (f.y1 - f.y0 || 1e-3));
-    var ox = left + (W - scale * (f.x1 - f.x0)) / 2, oy = margin + 4 + (H - 2 * margin - 28 - scale * (f.y1 - f.y0)) / 2;
+    var ox = left + (W - scale * (f.x1 - f.x0)) / 2, oy = top + margin + 4 + (H - 2 * margin - 28 - scale * (f.y1 - f.y0)) / 2;
     function tx(x) { return ox + (x - f.x0) * scale; }
     function ty(y) { return oy + (f.y1 - y) * scale; }   // y up
 
     var runIdx = this.side ? [pane] : this.runs.map(function (_, i) { return i; });
     ctx.save();
-    ctx.beginPath(); ctx.rect(left, 0, W, H); ctx.clip();
+    ctx.beginPath(); ctx.rect(left, top, W, H); ctx.clip();
+    if (top > 0) { ctx.strokeStyle = "#ccc"; ctx.lineWidth = 1; ctx.beginPath(); ctx.moveTo(left, top + 0.5); ctx.lineTo(left + W, top + 0.5); ctx.stroke(); }
     ctx.lineJoin = ctx.lineCap = "round";
 
     runIdx.forEach(function (r) {
@@ -150,14 +155,14 @@ var Midsagittal = (function () {
 
     // mm scale bar, about a fifth of the pane
     var mm = niceLength((W / 5) / scale * 1000), len = mm / 1000 * scale;
-    var bx = left + 14, by = H - 14;
+    var bx = left + 14, by = top + H - 14;
     ctx.strokeStyle = "#222"; ctx.lineWidth = 2; ctx.setLineDash([]);
     ctx.beginPath(); ctx.moveTo(bx, by - 4); ctx.lineTo(bx, by); ctx.lineTo(bx + len, by); ctx.lineTo(bx + len, by - 4); ctx.stroke();
     ctx.fillStyle = "#222"; ctx.font = "12px sans-serif";
     ctx.fillText(mm + " mm", bx + len + 6, by);
     ctx.fillStyle = "#555";
-    ctx.fillText("midsagittal section z = " + (this.runs[runIdx[0]].model.midZ * 1000).toFixed(1) + " mm · anterior →", left + 10, 16);
-    if (this.side && this.names[pane]) { ctx.fillStyle = "#222"; ctx.fillText(this.names[pane], left + 10, 32); }
+    ctx.fillText("midsagittal z = " + (this.runs[runIdx[0]].model.midZ * 1000).toFixed(1) + " mm · anterior →", left + 10, top + 16);
+    if (this.side && this.names[pane]) { ctx.fillStyle = "#222"; ctx.fillText(this.names[pane], left + 10, top + 32); }
     ctx.restore();
   };
 

@@ -353,10 +353,11 @@ var Surface3D = (function () {
       var light = p.scene.userData.light;
       light.position.copy(cam.position);          // light from the eye: no side goes dark
       light.target.position.copy(target);
-      r.setViewport(i * paneW, 0, paneW, h);
-      r.setScissor(i * paneW, 0, paneW, h);
+      var pw = i === this.panes.length - 1 ? w - i * paneW : paneW;   // the last pane takes an odd pixel
+      r.setViewport(i * paneW, 0, pw, h);
+      r.setScissor(i * paneW, 0, pw, h);
       r.render(p.scene, cam);
-    });
+    }, this);
     r.setScissorTest(false);
   };
 
