@@ -141,7 +141,7 @@
   var replay = null;
 
   function startReplay(session) {
-    state.runs = session.runs || [];
+    state.runs = (session.runs || []).slice(0, 2);   // a run and its reference: the page shows two
     if (!state.runs.length) throw new Error("/api/session: replay without runs");
     state.runs.forEach(function (r, i) {
       if (!Array.isArray(r.times) || !r.times.length) throw new Error("/api/session: run " + i + " (" + r.name + ") has no frames");

@@ -36,6 +36,12 @@ var Replay = (function () {
     slider.min = this.t0; slider.max = this.t1; slider.step = "any"; slider.value = this.t0;
     slider.addEventListener("input", function () { self.want(Number(slider.value)).catch(function () {}); });
     $("play").addEventListener("click", function () { self.setPlaying(!self.playing); });
+    // space plays and pauses, unless a form control has the keyboard
+    document.addEventListener("keydown", function (ev) {
+      if (ev.key !== " " || /^(INPUT|SELECT|BUTTON|TEXTAREA)$/.test(document.activeElement.tagName)) return;
+      ev.preventDefault();
+      self.setPlaying(!self.playing);
+    });
     $("replay").hidden = false;
   }
 
