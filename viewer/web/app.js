@@ -108,6 +108,8 @@
   function drawNow() {
     var frames = toDraw || [], waiters = drawWaiters;
     toDraw = null; drawWaiters = [];
+    // a redraw (new view, field, fibres) shows the same frames: not counted, status kept
+    var fresh = frames.some(function (f, r) { return f && f !== state.frames[r]; });
     frames.forEach(function (f, r) { if (f) state.frames[r] = f; });
     var shown = state.frames;
     try {
@@ -115,9 +117,11 @@
         if (view3d) view3d.update(shown, settings.field, $("fibres").checked);
         view2d.update(shown);
         panel.update(shown[0], shown[1]);
-        showFrameStatus(shown[0]);
-        state.framesDrawn++;
-        if (state.framesDrawn === 1) readyResolve();
+        if (fresh) {
+          showFrameStatus(shown[0]);
+          state.framesDrawn++;
+          if (state.framesDrawn === 1) readyResolve();
+        }
       }
     } catch (e) {
       showError(e);
