@@ -68,7 +68,8 @@ var TongueModel = (function () {
     var fj = json.fibres || { muscle: [], offsets: [0], nodes: [], origins: [] };
     var fMuscle = indices(fj.muscle || [], "model.fibres.muscle", Math.max(muscles.length, 1));
     var F = fMuscle.length;
-    var offsets = numbers(fj.offsets || [0], "model.fibres.offsets", F + 1);
+    // no fibres: [0] by the contract; [] (what a run file without muscles gives) means the same
+    var offsets = F === 0 && (!fj.offsets || !fj.offsets.length) ? [0] : numbers(fj.offsets, "model.fibres.offsets", F + 1);
     var fNodes = indices(fj.nodes || [], "model.fibres.nodes", n);
     if (offsets[0] !== 0 || offsets[F] !== fNodes.length) fail("model.fibres.offsets do not span model.fibres.nodes");
     for (var f = 0; f < F; f++) if (offsets[f + 1] < offsets[f]) fail("model.fibres.offsets decrease at " + f);

@@ -15,6 +15,7 @@ var Panel = (function () {
   Panel.prototype.setMuscles = function (muscles, second) {
     var box = $("activations");
     box.innerHTML = "";
+    if (!muscles.length) box.textContent = "this model has no muscles";
     this.rows = muscles.map(function (m, i) {
       var row = document.createElement("div");
       row.className = "act-row";

@@ -158,8 +158,9 @@ var Surface3D = (function () {
       }
       this.colour.needsUpdate = true;
       // with fibres shown the surface becomes see-through, else they would be hidden inside
-      this.surface.material.opacity = showFibres ? 0.6 : 1;
-      this.surface.material.depthWrite = !showFibres;
+      var seeThrough = showFibres && !!this.fibres;
+      this.surface.material.opacity = seeThrough ? 0.6 : 1;
+      this.surface.material.depthWrite = !seeThrough;
     }
 
     if (this.fibres) {
@@ -298,7 +299,7 @@ var Surface3D = (function () {
     var dir = new THREE.Vector3().fromArray(CAMERAS[name]).normalize();
     var s = this.box.size, radius = 0.5 * Math.sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
     var vfov = FOV * Math.PI / 180, hfov = 2 * Math.atan(Math.tan(vfov / 2) * this.camera.aspect);
-    var dist = radius / Math.sin(Math.min(vfov, hfov) / 2) * 0.9;
+    var dist = radius / Math.sin(Math.min(vfov, hfov) / 2) * 0.95;   // the bounding sphere, just
     this.camera.position.copy(this.target).addScaledVector(dir, dist);
     this.camera.up.set(0, 1, 0);
     this.camera.lookAt(this.target);
