@@ -80,6 +80,10 @@ var TongueApi = (function () {
     setTimeout(function () { self.connect(); }, RECONNECT_MS);
   };
 
+  LiveSocket.prototype.connected = function () {
+    return !!this.ws && this.ws.readyState === WebSocket.OPEN;
+  };
+
   LiveSocket.prototype.next = function () {
     if (this.waiting || !this.ws || this.ws.readyState !== WebSocket.OPEN) return;
     this.waiting = true;

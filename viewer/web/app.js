@@ -136,7 +136,10 @@
     if (f.contactNodes.length) parts.push(f.contactNodes.length + " nodes in contact, max penetration " + (f.maxPenetration * 1000).toFixed(2) + " mm");
     if (state.mode === "live" && f.dropped) parts.push(f.dropped + " states not shown");
     state.error = null;
-    if (state.fault) { panel.setStatus(parts.join(" · ") + " · " + state.fault, "error"); return; }
+    // a frame drawn after the connection dropped must not hide that it did
+    if (state.mode === "live" && !live.socket.connected()) state.error = "connection to the server lost; retrying every 2 s";
+    var problem = [state.error, state.fault].filter(Boolean).join(" · ");
+    if (problem) { panel.setStatus(parts.join(" · ") + " · " + problem, "error"); return; }
     panel.setStatus(parts.join(" · "), (f.status && f.status !== "ok") || !f.converged ? "warn" : "ok");
   }
 
@@ -227,7 +230,8 @@
     TongueApi.model().then(function (json) {
       var m = TongueModel.prepare(json);
       state.modelVersion = m.version;
-      setModels([m], null);
+      // a reconnect to the same model keeps the views (and the trails)
+      if (!sameModel(state.models[0], m)) setModels([m], null);
     }).catch(function (err) {
       showError(err);
       live.retry = setTimeout(loadLiveModel, 2000);   // e.g. 404 before the model arrived
@@ -236,6 +240,13 @@
       if (live.again) { live.again = false; loadLiveModel(); return; }
       if (live.pending) { var f = live.pending; live.pending = null; liveFrame(f); }
     });
+  }
+
+  function sameModel(a, b) {
+    if (!a || a.version !== b.version || a.numNodes !== b.numNodes) return false;
+    if (a.surfaceTriangles.length !== b.surfaceTriangles.length || a.obstacles.length !== b.obstacles.length) return false;
+    for (var i = 0; i < a.rest.length; i++) if (a.rest[i] !== b.rest[i]) return false;
+    return a.muscles.map(function (x) { return x.name; }).join() === b.muscles.map(function (x) { return x.name; }).join();
   }
 
   function liveFrame(msg) {
