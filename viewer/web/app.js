@@ -133,8 +133,8 @@
   function showFrameStatus(f) {
     var parts = [state.mode === "live" ? "live" : "replay", f.status || "ok"];
     if (!f.converged) parts.push("not converged");
-    if (f.contactNodes.length) parts.push(f.contactNodes.length + " nodes in contact, max penetration " + (f.maxPenetration * 1000).toFixed(2) + " mm");
-    if (state.mode === "live" && f.dropped) parts.push(f.dropped + " states not shown");
+    if (f.contactNodes.length) parts.push(f.contactNodes.length + (f.contactNodes.length === 1 ? " node" : " nodes") + " in contact, max penetration " + (f.maxPenetration * 1000).toFixed(2) + " mm");
+    if (state.mode === "live" && f.dropped) parts.push(f.dropped + (f.dropped === 1 ? " state" : " states") + " not shown");
     state.error = null;
     // a frame drawn after the connection dropped must not hide that it did
     if (state.mode === "live" && !live.socket.connected()) state.error = "connection to the server lost; retrying every 2 s";
