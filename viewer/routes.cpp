@@ -76,10 +76,10 @@ HttpAnswer Routes::answer(std::string_view target) const {
   if (path == "/api/model") return model(query);
   if (path == "/api/frame") return frame(query);
   if (path == "/three/three.min.js")
-    return file(std::string(kThreeDir) + "build/three.min.js", content_type(".js"));
+    return file(std::string(kThreeDir) + "build/three.min.js", content_type("three.min.js"));
   if (path == "/three/OrbitControls.js")
     return file(std::string(kThreeDir) + "examples/js/controls/OrbitControls.js",
-                content_type(".js"));
+                content_type("OrbitControls.js"));
   const std::string_view name = path == "/" ? "index.html" : path.substr(1);
   if (!plain_name(name)) return error(404, "no such page");
   return file(web_dir_ + "/" + std::string(name), content_type(std::string(name)));

@@ -43,7 +43,10 @@ std::unique_ptr<run_file::RunFileWriter> open_scene_run_file(const std::string& 
     for (const auto& m : built.muscles->muscles()) {
       run_file::MuscleDescription d{m.name, m.max_force, {}};
       for (const auto& f : m.fibres) {
-        run_file::FibreDescription fd{f.nodes, {}, f.weight};
+        // The origin stays NaN (the file's "none") unless the fibre has one.
+        run_file::FibreDescription fd;
+        fd.nodes = f.nodes;
+        fd.weight = f.weight;
         if (f.origin) fd.origin = {f.origin->x(), f.origin->y(), f.origin->z()};
         d.fibres.push_back(std::move(fd));
       }

@@ -361,6 +361,12 @@ TEST_F(SimBatch, TongueSceneLogsMusclesSetsAndLandmarks) {
   EXPECT_EQ(static_cast<std::size_t>(offsets.back()), fibre_nodes.size());
   for (int m : fibre_muscle) EXPECT_LT(static_cast<std::size_t>(m), muscles);
   EXPECT_EQ(f.shape("/muscles/fibres/origin"), (std::vector<std::size_t>{fibre_muscle.size(), 3}));
+  // The built-in tongue has fibres with a bony origin and fibres without (NaN in the file).
+  const std::vector<double> origins = f.doubles("/muscles/fibres/origin");
+  std::size_t without_origin = 0;
+  for (std::size_t k = 0; k < fibre_muscle.size(); ++k) without_origin += std::isnan(origins[3 * k]);
+  EXPECT_GT(without_origin, 0u);
+  EXPECT_LT(without_origin, fibre_muscle.size());
   EXPECT_EQ(f.string_attribute("/", "project_version"), "0.1.0");
   EXPECT_EQ(f.string_attribute("/", "start_time").size(), 20u);  // 2026-11-22T17:40:00Z
 
