@@ -25,6 +25,7 @@ Frame frame_from_state(const tongue_lcm::lcmt_tongue_state& s) {
   f.contact_forces = s.contact_forces;
   f.obstacle_forces = s.obstacle_forces;
   f.max_penetration = s.max_penetration;
+  f.reduced_correction = s.reduced_model_correction;
   return f;
 }
 
@@ -59,6 +60,7 @@ std::string frame_json(const Frame& f, std::int64_t dropped) {
                     {"forces", f.contact_forces}}},
                   {"obstacle_forces", f.obstacle_forces},
                   {"max_penetration", number(f.max_penetration)},
+                  {"reduced_correction", number(f.reduced_correction)},
                   {"dropped", dropped}};
   return j.dump(-1, ' ', false, json::error_handler_t::replace);
 }

@@ -31,6 +31,8 @@ struct Frame {
   std::vector<double> contact_forces;  // x, y, z per contact [N]
   std::vector<double> obstacle_forces;  // x, y, z per obstacle [N]
   double max_penetration = 0.0;          // m
+  // A reduced model's error indicator at its last check (0: the full model) [m].
+  double reduced_correction = 0.0;
 };
 
 // A state message as a frame; the message has been checked against its model.

@@ -55,6 +55,7 @@ RunReplay::Run RunReplay::load(const std::string& path) {
   r.lengths = series(file, L::kMuscleLength, frames, r.muscles);
   r.residual = series(file, L::kResidual, frames, 1);
   r.wall_time = series(file, L::kWallTime, frames, 1);
+  r.correction = series(file, L::kReducedCorrection, frames, 1);
   r.iterations = int_series(file, L::kIterations, frames);
   r.cuts = int_series(file, L::kCuts, frames);
   if (r.obstacles > 0) {
@@ -105,6 +106,7 @@ Frame RunReplay::frame(int run, std::int64_t index) const {
   if (!r.residual.empty()) f.residual = r.residual[i];
   if (!r.wall_time.empty()) f.wall_time = r.wall_time[i];
   f.cuts = r.cuts[i];
+  if (!r.correction.empty()) f.reduced_correction = r.correction[i];
   // Simulated time since the previous frame over the wall time it took.
   if (i > 0 && f.wall_time > 0.0) f.real_time_factor = (r.time[i] - r.time[i - 1]) / f.wall_time;
   if (r.obstacles > 0) {

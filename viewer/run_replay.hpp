@@ -26,7 +26,7 @@ class RunReplay {
     std::string path, status, analysis;
     std::string model_json;
     std::size_t nodes = 0, muscles = 0, obstacles = 0;
-    std::vector<double> time, positions, activations, lengths, residual, wall_time;
+    std::vector<double> time, positions, activations, lengths, residual, wall_time, correction;
     std::vector<int> iterations, cuts;
     std::vector<double> node_forces, obstacle_forces, penetration;  // empty without obstacles
   };

@@ -134,6 +134,7 @@
     var parts = [state.mode === "live" ? "live" : "replay", f.status || "ok"];
     if (!f.converged) parts.push("not converged");
     if (f.contactNodes.length) parts.push(f.contactNodes.length + (f.contactNodes.length === 1 ? " node" : " nodes") + " in contact, max penetration " + (f.maxPenetration * 1000).toFixed(2) + " mm");
+    if (f.reducedCorrection > 0) parts.push("reduced model: correction " + (f.reducedCorrection * 1000).toFixed(3) + " mm");
     if (state.mode === "live" && f.dropped) parts.push(f.dropped + (f.dropped === 1 ? " state" : " states") + " not shown");
     state.error = null;
     // a frame drawn after the connection dropped must not hide that it did

@@ -151,6 +151,7 @@ var TongueModel = (function () {
       realTimeFactor: typeof json.real_time_factor === "number" ? json.real_time_factor : null,
       contactNodes: cNodes, contactForces: cForces,
       maxPenetration: typeof json.max_penetration === "number" ? json.max_penetration : 0,
+      reducedCorrection: typeof json.reduced_correction === "number" ? json.reduced_correction : 0,
       dropped: json.dropped || 0
     };
   }
