@@ -38,7 +38,8 @@ struct Rule {
 const std::set<std::string>& project_folders() {
   static const std::set<std::string> folders = {
       "common", "fem", "model",    "reduced",    "scene",         "scene_run",       "server",
-      "apps",   "bus", "run_file", "controller", "ep_controller", "sequence_player", "replay"};
+      "apps",   "bus", "run_file", "controller", "ep_controller", "sequence_player", "replay",
+      "viewer"};
   return folders;
 }
 
@@ -99,6 +100,11 @@ const std::vector<Rule>& rules() {
        {},
        "controllers/ use common/, bus/ and run_file/, never fem/, model/, scene/, scene_run/ or "
        "server/"},
+      {"viewer",
+       {"common", "bus", "run_file", "controller", "fem", "model", "viewer"},
+       {"yaml-cpp"},
+       "viewer/ watches the bus as a controller does and reads run files; of the model it uses "
+       "the mesh's boundary and the landmarks' names, never scene/, scene_run/ or server/"},
   };
   return r;
 }
@@ -184,6 +190,9 @@ TEST(Layering, BusIncludesNoModel) {
 }
 TEST(Layering, ControllersIncludeNoModel) {
   expect_clean("controllers");
+}
+TEST(Layering, ViewerIncludesNoSceneOrServer) {
+  expect_clean("viewer");
 }
 TEST(Layering, SceneSceneRunAndServerPointDown) {
   for (const char* folder : {"sim_server/scene", "sim_server/scene_run", "sim_server/server"})
