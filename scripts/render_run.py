@@ -204,8 +204,12 @@ class Page:
         self.driver = driver
 
     def open(self, url, timeout_s=PAGE_TIMEOUT_S):
-        """Loads url and waits for tongueViewer.ready; raises Failure with the page's status
-        line when it does not come."""
+        """Loads url and waits for tongueViewer.ready."""
+        self.load(url, timeout_s)
+        self.wait_ready()
+
+    def load(self, url, timeout_s=PAGE_TIMEOUT_S):
+        """Loads url and waits for window.tongueViewer to exist (not for it to be ready)."""
         self.driver.get(url)
         deadline = time.monotonic() + timeout_s
         while not self.driver.execute_script("return typeof window.tongueViewer === 'object' && "
@@ -214,9 +218,13 @@ class Page:
                 raise Failure(f"the page {url} defines no window.tongueViewer within "
                               f"{timeout_s} s (status: {self.status_text()!r})")
             time.sleep(0.1)
+
+    def wait_ready(self):
+        """Waits for tongueViewer.ready (at most the driver's script timeout); raises Failure
+        with the page's status line when it is rejected."""
         result = self.call("return window.tongueViewer.ready")
         if result["error"] is not None:
-            raise Failure(f"the page {url} did not get ready: {result['error']} "
+            raise Failure(f"the page did not get ready: {result['error']} "
                           f"(status: {self.status_text()!r})")
 
     def call(self, promise_expression, *args):
@@ -382,7 +390,9 @@ def render(args):
         if args.mp4:
             make_movie(ffmpeg, written, args.fps, args.mp4)
             print(f"{PROG}: {len(written)} frame(s) at {args.fps:g} fps in {args.mp4}", flush=True)
-    finally:
+    finally:  # not to be cut short by a second signal
+        for s in (signal.SIGINT, signal.SIGTERM, signal.SIGHUP):
+            signal.signal(s, signal.SIG_IGN)
         if browser is not None:
             browser.close()
         if viewer is not None:

@@ -1,0 +1,64 @@
+"""tongue_viewer's errors: a bad or missing run file, a port in use, a bad option. Each ends it
+with an error status and one line on stderr naming the file or the address."""
+import socket
+import subprocess
+
+import h5py
+import pytest
+
+from conftest import program
+
+TIMEOUT_S = 60  # it should fail at once
+
+
+def run_viewer(*args):
+    done = subprocess.run([program("TONGUE_VIEWER"), *args], capture_output=True, text=True,
+                          stdin=subprocess.DEVNULL, timeout=TIMEOUT_S)
+    print(f"tongue_viewer {' '.join(args)}: exit {done.returncode}, stderr {done.stderr!r}")
+    return done
+
+
+def assert_one_line_error(done, names, statuses=(1, 2)):
+    """An error status of the contract (1 usage, 2 runtime) and one line on stderr that holds
+    `names`; no serving line on stdout."""
+    assert done.returncode in statuses, (done.returncode, done.stderr)
+    lines = [line for line in done.stderr.splitlines() if line.strip()]
+    assert len(lines) == 1, f"expected one line on stderr, got {done.stderr!r}"
+    assert names in lines[0], f"{names!r} not named in {lines[0]!r}"
+    assert "serving" not in done.stdout, done.stdout
+
+
+@pytest.fixture
+def bad_files(tmp_path):
+    text = tmp_path / "notes.h5"
+    text.write_text("this is not HDF5\n")
+    empty = tmp_path / "empty.h5"
+    with h5py.File(empty, "w") as f:
+        f.attrs["note"] = "an HDF5 file, but no run file"
+    return {"text": str(text), "empty": str(empty), "missing": str(tmp_path / "missing.h5")}
+
+
+@pytest.mark.parametrize("kind", ["text", "empty", "missing"])
+def test_bad_run_file_is_named(bad_files, kind):
+    done = run_viewer("--run", bad_files[kind], "--listen", "127.0.0.1:0")
+    assert_one_line_error(done, bad_files[kind])
+
+
+def test_bad_reference_run_file_is_named(runs, bad_files):
+    done = run_viewer("--run", runs["sg"], "--run", bad_files["text"], "--listen", "127.0.0.1:0")
+    assert_one_line_error(done, bad_files["text"])
+
+
+def test_port_in_use_is_named(runs):
+    with socket.socket(socket.AF_INET, socket.SOCK_STREAM) as taken:
+        taken.bind(("127.0.0.1", 0))
+        taken.listen(1)
+        address = f"127.0.0.1:{taken.getsockname()[1]}"
+        done = run_viewer("--run", runs["sg"], "--listen", address)
+    assert_one_line_error(done, address)
+
+
+def test_bad_option_is_a_usage_error():
+    done = run_viewer("--no-such-option")
+    assert done.returncode == 1, (done.returncode, done.stderr)
+    assert "--no-such-option" in done.stderr

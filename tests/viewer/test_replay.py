@@ -1,0 +1,132 @@
+"""tongue_viewer replaying run files made by sim_batch: what it serves, and what the page shows
+after the slider moves or tongueViewer.seek, against the run file read with h5py."""
+import os
+
+import numpy as np
+import pytest
+
+from conftest import assert_drawn, assert_positions_equal, read_run, START_TIMEOUT_S, wait_until
+
+
+def replay(processes, *paths):
+    args = []
+    for path in paths:
+        args += ["--run", path]
+    return processes.viewer(*args, "--listen", "127.0.0.1:0")
+
+
+def test_session_model_and_frames_are_the_run_files(runs, processes):
+    viewer = replay(processes, runs["sg"])
+    run = read_run(runs["sg"])
+    code, session = viewer.get("/api/session")
+    assert code == 200 and session["mode"] == "replay", session
+    assert len(session["runs"]) == 1
+    entry = session["runs"][0]
+    assert entry["name"] == "sg.h5" and entry["path"] == os.path.abspath(runs["sg"]), entry
+    assert entry["frames"] == 31 and entry["status"] == "completed", entry
+    assert entry["analysis"] == "dynamic", entry
+    np.testing.assert_allclose(entry["times"], run["time"], rtol=0, atol=1e-12)
+
+    code, model = viewer.get("/api/model?run=0")
+    assert code == 200 and model["num_nodes"] == 1001, model.get("num_nodes")
+    assert_positions_equal(model["rest_positions"], run["rest_positions"])
+    assert len(model["elements"]) == 8 * 720 and len(model["surface"]) % 4 == 0
+    assert 0 <= min(model["surface"]) and max(model["surface"]) < 1001
+    assert [m["name"] for m in model["muscles"]] == run["muscles"]
+    assert {m["name"] for m in model["landmarks"]} == {
+        "tip", "blade", "palatal_dorsum", "velar_dorsum", "root", "gg_insertion"}
+    assert model["dt"] == pytest.approx(0.004)
+
+    code, frame = viewer.get("/api/frame?run=0&index=12")
+    assert code == 200 and frame["type"] == "frame", frame
+    assert (frame["run"], frame["index"], frame["nodes"]) == (0, 12, None)
+    assert frame["time"] == pytest.approx(run["time"][12], abs=1e-12)
+    error = assert_positions_equal(frame["positions"], run["positions"][12])
+    print(f"/api/frame: positions within {error:.3g} m of the run file")
+    assert len(frame["activations"]) == 19
+
+    for bad in ("/api/frame?run=0&index=31", "/api/frame?run=0&index=-1",
+                "/api/frame?run=1&index=0"):
+        code, body = viewer.get(bad)
+        assert code == 404 and isinstance(body, dict) and body.get("error"), (bad, code, body)
+
+
+def set_slider(driver, fraction):
+    """Moves #slider to min + fraction (max - min) as a user would: value, then 'input'."""
+    return driver.execute_script(
+        "const s = document.getElementById('slider');"
+        "const min = Number(s.min), max = Number(s.max);"
+        "s.value = String(min + (max - min) * arguments[0]);"
+        "s.dispatchEvent(new Event('input', {bubbles: true}));"
+        "s.dispatchEvent(new Event('change', {bubbles: true}));"
+        "return {min: s.min, max: s.max, value: s.value};", fraction)
+
+
+def test_slider_and_seek_show_the_run_files_positions(runs, processes, browser):
+    viewer = replay(processes, runs["sg"])
+    run = read_run(runs["sg"])
+    times, last = run["time"], len(run["time"]) - 1
+    page = browser.page
+    page.open(viewer.url)
+    info = page.info()
+    assert info["mode"] == "replay" and info["index"] == 0, info
+    assert_positions_equal(page.positions(), run["positions"][0])
+    assert_drawn(browser.element_png("view3d"), "the 3D view (#view3d) at frame 0")
+
+    # The slider at its end: the last frame; halfway: some frame between, the run file's.
+    slider = set_slider(browser.driver, 1.0)
+    wait_until(lambda: page.info()["index"] == last, START_TIMEOUT_S,
+               f"the page to show the last frame after the slider moved to {slider}")
+    info = page.info()
+    assert info["time"] == pytest.approx(times[last], abs=1e-12), info
+    error = assert_positions_equal(page.positions(), run["positions"][last])
+    print(f"page positions within {error:.3g} m of the run file")
+    wait_until(lambda: str(info["step"]) in page.text("step"), START_TIMEOUT_S,
+               f"#step to show step {info['step']}")
+    slider = set_slider(browser.driver, 0.5)
+    wait_until(lambda: page.info()["index"] != last, START_TIMEOUT_S,
+               f"the page to move off the last frame after the slider moved to {slider}")
+    info = page.info()
+    assert 0 < info["index"] < last, (slider, info)
+    assert info["time"] == pytest.approx(times[info["index"]], abs=1e-12), info
+    assert_positions_equal(page.positions(), run["positions"][info["index"]])
+
+    # seek: the frame nearest the time, drawn when its Promise resolves.
+    dt = times[1] - times[0]
+    for t, index in ((times[7], 7), (times[22], 22), (times[9] + 0.4 * dt, 9),
+                     (times[9] + 0.6 * dt, 10), (-1.0, 0), (10.0, last)):
+        info = page.seek(t)
+        assert info["index"] == index, (t, info)
+        assert_positions_equal(page.positions(), run["positions"][index])
+
+    # setView redraws; the picture is still there.
+    page.set_view(view="3d", field="displacement", camera="front")
+    assert_drawn(browser.element_png("view3d"), "the 3D view after setView")
+
+
+def test_start_time_from_the_url(runs, processes, browser):
+    viewer = replay(processes, runs["sg"])
+    run = read_run(runs["sg"])
+    browser.page.open(viewer.url + "?time=0.06&view=both&field=activation&camera=oblique")
+    info = browser.page.info()
+    assert info["index"] == 15, info
+    assert_positions_equal(browser.page.positions(), run["positions"][15])
+
+
+@pytest.mark.parametrize("compare", ["", "?compare=side"])
+def test_two_runs_each_at_its_frame_nearest_the_time(runs, processes, browser, compare):
+    viewer = replay(processes, runs["sg"], runs["ggp"])
+    sg, ggp = read_run(runs["sg"]), read_run(runs["ggp"])
+    code, session = viewer.get("/api/session")
+    assert [r["name"] for r in session["runs"]] == ["sg.h5", "ggp.h5"], session
+    assert viewer.get("/api/model?run=1")[0] == 200
+    page = browser.page
+    page.open(viewer.url + compare)
+    for k in (0, 13, 30):
+        page.seek(sg["time"][k])
+        assert page.info()["index"] == k
+        assert_positions_equal(page.positions(0), sg["positions"][k])
+        assert_positions_equal(page.positions(1), ggp["positions"][k])
+    # The two runs really differ there (else the check above proves little).
+    assert np.abs(sg["positions"][30] - ggp["positions"][30]).max() > 1e-4
+    assert_drawn(browser.element_png("view3d"), "the 3D view of two runs")
