@@ -110,8 +110,9 @@ class Viewer:
                     return
             code = self.process.poll()
             if code is not None:
+                lines = [line.strip() for line in self.stderr().splitlines() if line.strip()]
                 raise Failure(f"tongue_viewer exited with status {code} before serving: "
-                              f"{self.stderr().strip() or '(nothing on stderr)'}")
+                              f"{' | '.join(lines) or '(nothing on stderr)'}")
             if time.monotonic() > deadline:
                 raise Failure(f"tongue_viewer printed no 'tongue_viewer: serving http://...' line "
                               f"within {timeout_s} s; stderr: {self.stderr().strip()}")

@@ -4,7 +4,8 @@ whatever happened.
 
 The programs come from the environment (CTest sets them, tests/viewer/CMakeLists.txt): SIM_SERVER,
 SEQUENCE_PLAYER, SIM_BATCH, TONGUE_VIEWER, PROJECT_DIR; without them, PROJECT_DIR defaults to this
-source tree and the programs to its build/ folder.
+source tree and the programs to the build folder BUILD_DIR (default PROJECT_DIR/build). From a
+second work tree against the main one's build: BUILD_DIR=/work/main/build python3 -m pytest ...
 
 Waits are on conditions with generous deadlines (a loaded 2-core machine, Chromium drawing WebGL
 in software): a slow machine makes the tests slower, never wrong. Each LCM test has a udpm port of
@@ -25,7 +26,7 @@ PROJECT = os.environ.get("PROJECT_DIR") or os.path.dirname(
 sys.path.insert(0, os.path.join(PROJECT, "scripts"))
 import render_run  # noqa: E402  (Browser, Page and the serving line, shared with the stills)
 
-BUILD = os.path.join(PROJECT, "build")
+BUILD = os.environ.get("BUILD_DIR") or os.path.join(PROJECT, "build")
 PROGRAMS = {
     "SIM_SERVER": os.path.join(BUILD, "sim_server", "apps", "sim_server"),
     "SIM_BATCH": os.path.join(BUILD, "sim_server", "apps", "sim_batch"),

@@ -35,7 +35,8 @@ def assert_complete_run(path, steps, dt=0.004):
     assert np.all(np.isfinite(run["positions"]))
     sg = [run["muscles"].index(n) for n in ("SG_left", "SG_right")]
     np.testing.assert_allclose(run["activations"][1:30, sg], SG_LEVEL)  # the player's step
-    assert np.all(run["activations"][-1] == 0.0)
+    if steps > 40:
+        assert np.all(run["activations"][40:] == 0.0)  # after the step, all off
 
 
 def test_live_page_follows_a_lockstep_run(tmp_path, processes, browser):
@@ -89,7 +90,7 @@ def read_run_muscles(tmp_path, viewer):
 
 
 def test_viewer_killed_mid_run_leaves_the_run_whole(tmp_path, processes, browser):
-    port, steps = 7871, 2500
+    port, steps = 7871, 4000
     server = processes.sim_server(port, "tongue_sg_3n.yaml", tmp_path / "run.h5",
                                   "--max-steps", str(steps))
     viewer = processes.viewer("--lcm-url", lcm_url(port), "--listen", "127.0.0.1:0")
@@ -111,7 +112,7 @@ def test_viewer_killed_mid_run_leaves_the_run_whole(tmp_path, processes, browser
 
 def test_browser_closed_mid_run_leaves_the_run_and_the_viewer_whole(tmp_path, processes,
                                                                      browser_factory):
-    port, steps = 7872, 2500
+    port, steps = 7872, 4000
     server = processes.sim_server(port, "tongue_sg_3n.yaml", tmp_path / "run.h5",
                                   "--max-steps", str(steps))
     viewer = processes.viewer("--lcm-url", lcm_url(port), "--listen", "127.0.0.1:0")
