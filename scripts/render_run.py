@@ -4,7 +4,7 @@
 usage: render_run.py RUN.h5 [--reference REF.h5] [--times T ... | --every N]
                      [--view both|3d|2d] [--field muscle|activation|displacement]
                      [--camera left|front|top|oblique] [--size 1280x720] [--out DIR]
-                     [--mp4 FILE] [--fps F] [--viewer PATH]
+                     [--mp4 FILE] [--fps F] [--viewer PATH] [--web DIR]
 
 Starts `tongue_viewer --run RUN.h5 [--run REF.h5] --listen 127.0.0.1:0`, reads its port from the
 line `tongue_viewer: serving http://127.0.0.1:PORT/`, opens the page in headless Chromium
@@ -17,7 +17,8 @@ Times: --times T ... (s; each shows the run's frame nearest T), else every N-th 
 (--every N, default 1: every frame). --out defaults to RUN_frames/ beside the run file. --mp4
 FILE assembles the frames, in the order drawn, at --fps frames per second (default 25) with
 ffmpeg (H.264, yuv420p), which must be on PATH. --viewer defaults to $TONGUE_VIEWER, else
-build/viewer/tongue_viewer of this project.
+build/viewer/tongue_viewer of this project; --web DIR is passed on to it (the page's folder,
+default the viewer's own).
 
 Runs on Debian's /usr/bin/python3 (python3-selenium, /usr/bin/chromium, /usr/bin/chromedriver).
 The viewer and the browser are stopped on every way out (done, error, SIGINT, SIGTERM).
@@ -317,6 +318,8 @@ def parse_args(argv):
     p.add_argument("--fps", type=positive_float, default=25.0)
     p.add_argument("--viewer", metavar="PATH", default=None,
                    help="tongue_viewer program (default $TONGUE_VIEWER, else build/viewer/)")
+    p.add_argument("--web", metavar="DIR", default=None,
+                   help="the page's folder, passed on to tongue_viewer (default its own)")
     return p.parse_args(argv)
 
 
@@ -358,6 +361,8 @@ def render(args):
     if args.reference:
         viewer_args += ["--run", os.path.abspath(args.reference)]
     viewer_args += ["--listen", "127.0.0.1:0"]
+    if args.web:
+        viewer_args += ["--web", os.path.abspath(args.web)]
 
     viewer = browser = None
     try:

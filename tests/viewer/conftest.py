@@ -6,6 +6,7 @@ The programs come from the environment (CTest sets them, tests/viewer/CMakeLists
 SEQUENCE_PLAYER, SIM_BATCH, TONGUE_VIEWER, PROJECT_DIR; without them, PROJECT_DIR defaults to this
 source tree and the programs to the build folder BUILD_DIR (default PROJECT_DIR/build). From a
 second work tree against the main one's build: BUILD_DIR=/work/main/build python3 -m pytest ...
+VIEWER_WEB=DIR, when set, gives the viewer (and render_run.py) the page's folder with --web.
 
 Waits are on conditions with generous deadlines (a loaded 2-core machine, Chromium drawing WebGL
 in software): a slow machine makes the tests slower, never wrong. Each LCM test has a udpm port of
@@ -41,15 +42,23 @@ RUN_TIMEOUT_S = 300       # a whole lock-step run with a viewer and a browser be
 STOP_TIMEOUT_S = 15       # a program ending after SIGTERM
 POLL_S = 0.05
 
-# Positions shown by the page against the run file's float64: the page may hold them in a
-# Float32Array for WebGL (relative rounding 2^-24) after JSON text of at least 9 significant
-# digits (5e-10): within 2^-23 of each value, plus 1e-12 m for values at zero.
+# Positions shown by the page (or served as JSON) against the run file's float64. The contract
+# does not fix the JSON's precision; the server writes positions rounded to 1e-8 m (10 nm, within
+# 5e-9 m), and the page may hold them in a Float32Array for WebGL (relative rounding 2^-24, 6e-9 m
+# at 0.1 m). Hence within 1e-8 m + 2^-23 of each value: five orders of magnitude below the
+# tongue's millimetres, and far below a node's motion from one frame to the next (the tests check
+# that the frames they compare differ by more).
 POSITION_RTOL = 2.0 ** -23
-POSITION_ATOL_M = 1e-12
+POSITION_ATOL_M = 1e-8
 
 
 def program(name):
     return os.environ.get(name) or PROGRAMS[name]
+
+
+def web_args():
+    """--web DIR when VIEWER_WEB is set, else nothing (the viewer's own page)."""
+    return ["--web", os.environ["VIEWER_WEB"]] if os.environ.get("VIEWER_WEB") else []
 
 
 def project_path(*parts):
@@ -189,7 +198,8 @@ class Processes:
                                               "--lcm-url", lcm_url(port), *args])
 
     def viewer(self, *args, name="tongue_viewer"):
-        return self.start(name, [program("TONGUE_VIEWER"), *args], cls=Viewer).started()
+        return self.start(name, [program("TONGUE_VIEWER"), *args, *web_args()],
+                          cls=Viewer).started()
 
     def stop_all(self):
         for process in reversed(self.started):

@@ -1,5 +1,7 @@
 """tongue_viewer's errors: a bad or missing run file, a port in use, a bad option. Each ends it
-with an error status and one line on stderr naming the file or the address."""
+with an error status and one line on stderr naming the file or the address. And its end on
+SIGINT or SIGTERM: status 0 (the contract)."""
+import signal
 import socket
 import subprocess
 
@@ -62,3 +64,13 @@ def test_bad_option_is_a_usage_error():
     done = run_viewer("--no-such-option")
     assert done.returncode == 1, (done.returncode, done.stderr)
     assert "--no-such-option" in done.stderr
+
+
+@pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
+def test_signal_ends_it_with_status_0(runs, processes, signum):
+    viewer = processes.viewer("--run", runs["sg"], "--listen", "127.0.0.1:0")
+    assert viewer.get("/api/session")[0] == 200
+    viewer.popen.send_signal(signum)
+    assert viewer.wait(TIMEOUT_S) == 0, (
+        f"tongue_viewer ended with {viewer.popen.returncode} on {signal.Signals(signum).name}, "
+        f"not 0 as the contract says; stderr: {viewer.stderr()!r}")

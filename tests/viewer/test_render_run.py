@@ -11,14 +11,15 @@ import time
 import pytest
 
 from conftest import (RUN_TIMEOUT_S, START_TIMEOUT_S, assert_drawn, image_content, program,
-                      project_path, wait_until)
+                      project_path, wait_until, web_args)
 
 SCRIPT = project_path("scripts", "render_run.py")
 PYTHON = "/usr/bin/python3"
 
 
 def render(*args, env=None):
-    done = subprocess.run([PYTHON, SCRIPT, *map(str, args), "--viewer", program("TONGUE_VIEWER")],
+    done = subprocess.run([PYTHON, SCRIPT, *map(str, args), "--viewer", program("TONGUE_VIEWER"),
+                           *web_args()],
                           capture_output=True, text=True, stdin=subprocess.DEVNULL,
                           timeout=RUN_TIMEOUT_S, env=env)
     print(f"render_run.py {' '.join(map(str, args))}: exit {done.returncode}\n"
@@ -126,7 +127,8 @@ def program_name(pid):
 @pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
 def test_stopped_midway_it_leaves_no_process(runs, tmp_path, signum):
     script = subprocess.Popen([PYTHON, SCRIPT, runs["sg"], "--out", tmp_path / "frames",
-                               "--size", "320x240", "--viewer", program("TONGUE_VIEWER")],
+                               "--size", "320x240", "--viewer", program("TONGUE_VIEWER"),
+                               *web_args()],
                               stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
                               stdin=subprocess.DEVNULL)
     seen = set()

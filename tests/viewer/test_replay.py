@@ -5,7 +5,8 @@ import os
 import numpy as np
 import pytest
 
-from conftest import assert_drawn, assert_positions_equal, read_run, START_TIMEOUT_S, wait_until
+from conftest import (POSITION_ATOL_M, START_TIMEOUT_S, assert_drawn, assert_positions_equal,
+                      read_run, wait_until)
 
 
 def replay(processes, *paths):
@@ -94,8 +95,11 @@ def test_slider_and_seek_show_the_run_files_positions(runs, processes, browser):
     assert info["time"] == pytest.approx(times[info["index"]], abs=1e-12), info
     assert_positions_equal(page.positions(), run["positions"][info["index"]])
 
-    # seek: the frame nearest the time, drawn when its Promise resolves.
+    # seek: the frame nearest the time, drawn when its Promise resolves. Neighbouring frames
+    # differ by far more than the tolerance, so the right frame is told from its neighbours.
     dt = times[1] - times[0]
+    for k in (7, 9, 22):
+        assert np.abs(run["positions"][k + 1] - run["positions"][k]).max() > 100 * POSITION_ATOL_M
     for t, index in ((times[7], 7), (times[22], 22), (times[9] + 0.4 * dt, 9),
                      (times[9] + 0.6 * dt, 10), (-1.0, 0), (10.0, last)):
         info = page.seek(t)
