@@ -1,6 +1,7 @@
 """tongue_viewer's errors: a bad or missing run file, a port in use, a bad option. Each ends it
-with an error status and one line on stderr naming the file or the address. And its end on
-SIGINT or SIGTERM: status 0 (the contract)."""
+with status 1 (the project's convention for bad input or an I/O error, docs/exit_codes.md) and
+one line on stderr naming the file or the address. And its end on SIGINT or SIGTERM: status 130
+(the project's convention for an interrupted program)."""
 import signal
 import socket
 import subprocess
@@ -20,10 +21,9 @@ def run_viewer(*args):
     return done
 
 
-def assert_one_line_error(done, names, statuses=(1, 2)):
-    """An error status of the contract (1 usage, 2 runtime) and one line on stderr that holds
-    `names`; no serving line on stdout."""
-    assert done.returncode in statuses, (done.returncode, done.stderr)
+def assert_one_line_error(done, names):
+    """Status 1 and one line on stderr that holds `names`; no serving line on stdout."""
+    assert done.returncode == 1, (done.returncode, done.stderr)
     lines = [line for line in done.stderr.splitlines() if line.strip()]
     assert len(lines) == 1, f"expected one line on stderr, got {done.stderr!r}"
     assert names in lines[0], f"{names!r} not named in {lines[0]!r}"
@@ -67,10 +67,10 @@ def test_bad_option_is_a_usage_error():
 
 
 @pytest.mark.parametrize("signum", [signal.SIGTERM, signal.SIGINT])
-def test_signal_ends_it_with_status_0(runs, processes, signum):
+def test_signal_ends_it_with_status_130(runs, processes, signum):
     viewer = processes.viewer("--run", runs["sg"], "--listen", "127.0.0.1:0")
     assert viewer.get("/api/session")[0] == 200
     viewer.popen.send_signal(signum)
-    assert viewer.wait(TIMEOUT_S) == 0, (
+    assert viewer.wait(TIMEOUT_S) == 130, (
         f"tongue_viewer ended with {viewer.popen.returncode} on {signal.Signals(signum).name}, "
-        f"not 0 as the contract says; stderr: {viewer.stderr()!r}")
+        f"not 130 as the contract says; stderr: {viewer.stderr()!r}")

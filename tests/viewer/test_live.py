@@ -77,6 +77,7 @@ def test_live_page_follows_a_lockstep_run(tmp_path, processes, browser):
     assert server.wait() == 0, server.stderr()
     assert_drawn(browser.element_png("view3d"), "the 3D view at step 30")
     assert viewer.running()
+    assert viewer.terminate() == 130, viewer.stderr()  # SIGTERM: the contract's status
 
 
 def read_run_muscles(tmp_path, viewer):
