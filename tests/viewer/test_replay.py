@@ -137,3 +137,50 @@ def test_two_runs_each_at_its_frame_nearest_the_time(runs, processes, browser, c
     # The two runs really differ there (else the check above proves little).
     assert np.abs(sg["positions"][30] - ggp["positions"][30]).max() > 1e-4
     assert_drawn(browser.element_png("view3d"), "the 3D view of two runs")
+
+
+def test_contact_scene_obstacles_and_contacts_are_the_run_files(tmp_path, processes, browser):
+    """The /k/ closure against the built-in vocal tract (50 steps): the model's four obstacles,
+    and a frame's contacts (obstacle -1 in replay: the run file does not say which), forces and
+    penetration as the run file has them."""
+    import h5py
+    from conftest import sim_batch
+    path = sim_batch("tongue_k.yaml", tmp_path / "k.h5")
+    with h5py.File(path, "r") as f:
+        node_force = f["contact/node_force"][:]
+        obstacle_force = f["contact/obstacle_force"][:]
+        penetration = f["contact/max_penetration"][:]
+        positions = f["positions"][:]
+    touching = np.linalg.norm(node_force, axis=2)
+    k = int(np.argmax((touching > 0).sum(axis=1)))  # the frame with the most contacts
+    assert (touching[k] > 0).sum() >= 5, "the /k/ scene no longer reaches the palate"
+    viewer = replay(processes, path)
+    code, model = viewer.get("/api/model?run=0")
+    assert code == 200
+    assert [o["name"] for o in model["obstacles"]] == [
+        "hard_palate", "upper_teeth", "velum", "pharyngeal_wall"], model["obstacles"][:1]
+    for o in model["obstacles"]:
+        assert len(o["vertices"]) % 3 == 0 and len(o["triangles"]) % 3 == 0 and o["triangles"]
+        assert max(o["triangles"]) < len(o["vertices"]) // 3, o["name"]
+
+    code, frame = viewer.get(f"/api/frame?run=0&index={k}")
+    assert code == 200
+    contacts = frame["contacts"]
+    nodes = contacts["nodes"]
+    assert set(np.flatnonzero(touching[k] > 1e-9)) <= set(nodes) <= set(
+        np.flatnonzero(touching[k] > 0)), (nodes, np.flatnonzero(touching[k] > 0))
+    assert contacts["obstacles"] == [-1] * len(nodes)
+    scale = np.abs(node_force[k]).max()
+    np.testing.assert_allclose(np.reshape(contacts["forces"], (-1, 3)), node_force[k][nodes],
+                               rtol=0, atol=1e-6 * scale)
+    np.testing.assert_allclose(frame["obstacle_forces"], obstacle_force[k].ravel(), rtol=0,
+                               atol=1e-6 * np.abs(obstacle_force[k]).max())
+    assert frame["max_penetration"] == pytest.approx(penetration[k], abs=1e-9)
+
+    page = browser.page
+    page.open(viewer.url)
+    assert page.seek(float(frame["time"]))["index"] == k
+    assert_positions_equal(page.positions(), positions[k])
+    assert_drawn(browser.element_png("view3d"), "the 3D view with the vocal tract")
+    assert_drawn(browser.element_png("view2d"), "the 2D view with the vocal tract",
+                 min_colours=2, min_fraction=0.002)
