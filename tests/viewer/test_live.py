@@ -71,6 +71,10 @@ def test_live_page_follows_a_lockstep_run(tmp_path, processes, browser):
     # The page asks for the newest state after each frame drawn: it ends on the last one.
     wait_until(lambda: page.info()["step"] == 30, RUN_TIMEOUT_S, "the page to show step 30")
     wait_until(lambda: 30 in numbers(page.text("step")), START_TIMEOUT_S, "#step to show 30")
+    wait_until(lambda: 120 in numbers(page.text("time")), START_TIMEOUT_S,
+               "#time to show 120 (ms)")
+    for element in ("rtf", "iterations"):
+        assert (page.text(element) or "").strip(), f"#{element} is empty"
     last = page.info()
     assert last["framesDrawn"] > info["framesDrawn"] and last["time"] == pytest.approx(0.12)
     assert player.wait() == 0, player.stderr()
@@ -100,6 +104,7 @@ def test_viewer_killed_mid_run_leaves_the_run_whole(tmp_path, processes, browser
                "the page to show a step of the run")
     status_before = browser.page.status_text()
     viewer.kill()  # SIGKILL: no goodbye on the bus or to the page
+    print(f"viewer killed with the page at step {browser.page.info()['step']} of {steps}")
     assert player.running(), "the run ended before the viewer was killed: lengthen it"
     assert player.wait() == 0, player.stderr()
     assert server.wait() == 0, server.stderr()
@@ -121,7 +126,9 @@ def test_browser_closed_mid_run_leaves_the_run_and_the_viewer_whole(tmp_path, pr
     player = processes.sequence_player(port, long_schedule(tmp_path, steps * 0.004))
     wait_until(lambda: first.page.info()["step"] >= 1, RUN_TIMEOUT_S,
                "the page to show a step of the run")
+    shown = first.page.info()["step"]
     first.close()  # the browser goes, its WebSocket with it
+    print(f"browser closed at step {shown} of {steps}")
     assert player.running(), "the run ended before the browser was closed: lengthen it"
     assert viewer.get("/api/session")[0] == 200
     assert player.wait() == 0, player.stderr()
