@@ -2,11 +2,12 @@
 after the slider moves or tongueViewer.seek, against the run file read with h5py."""
 import os
 
+import h5py
 import numpy as np
 import pytest
 
 from conftest import (POSITION_ATOL_M, START_TIMEOUT_S, assert_drawn, assert_positions_equal,
-                      read_run, wait_until)
+                      read_run, sim_batch, wait_until)
 
 
 def replay(processes, *paths):
@@ -143,8 +144,6 @@ def test_contact_scene_obstacles_and_contacts_are_the_run_files(tmp_path, proces
     """The /k/ closure against the built-in vocal tract (50 steps): the model's four obstacles,
     and a frame's contacts (obstacle -1 in replay: the run file does not say which), forces and
     penetration as the run file has them."""
-    import h5py
-    from conftest import sim_batch
     path = sim_batch("tongue_k.yaml", tmp_path / "k.h5")
     with h5py.File(path, "r") as f:
         node_force = f["contact/node_force"][:]
