@@ -24,6 +24,7 @@ import pytest
 
 PROJECT = os.environ.get("PROJECT_DIR") or os.path.dirname(
     os.path.dirname(os.path.dirname(os.path.abspath(__file__))))
+sys.dont_write_bytecode = True  # no __pycache__ in the source tree's scripts/
 sys.path.insert(0, os.path.join(PROJECT, "scripts"))
 import render_run  # noqa: E402  (Browser, Page and the serving line, shared with the stills)
 
