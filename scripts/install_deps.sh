@@ -21,7 +21,7 @@ packages=(
   python3-distributed python3-scipy  # python/tongue_sweep: sweeps on dask.distributed, fits with scipy.optimize
   libboost-dev nlohmann-json3-dev  # viewer: HTTP and WebSocket (Boost.Beast), JSON
   libjs-three                      # viewer/web: three.js, served by tongue_viewer itself
-  chromium chromium-driver python3-selenium  # the viewer's browser tests, scripts/render_run.py
+  chromium chromium-driver python3-selenium python3-pil  # the viewer's browser tests, scripts/render_run.py
   ffmpeg                           # scripts/render_run.py --mp4
 )
 
