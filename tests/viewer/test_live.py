@@ -98,7 +98,12 @@ def test_viewer_killed_mid_run_leaves_the_run_whole(tmp_path, processes, browser
     server = processes.sim_server(port, "tongue_sg_3n.yaml", tmp_path / "run.h5",
                                   "--max-steps", str(steps))
     viewer = processes.viewer("--lcm-url", lcm_url(port), "--listen", "127.0.0.1:0")
+    # A second viewer on the same server: any number may watch it.
+    other = processes.viewer("--lcm-url", lcm_url(port), "--listen", "127.0.0.1:0",
+                             name="second tongue_viewer")
     browser.page.open(viewer.url)  # joins late: asks the server to describe itself
+    wait_until(lambda: other.get("/api/model")[0] == 200, START_TIMEOUT_S,
+               "the second viewer to have the model")
     player = processes.sequence_player(port, long_schedule(tmp_path, steps * 0.004))
     wait_until(lambda: browser.page.info()["step"] >= 1, RUN_TIMEOUT_S,
                "the page to show a step of the run")
@@ -109,6 +114,7 @@ def test_viewer_killed_mid_run_leaves_the_run_whole(tmp_path, processes, browser
     assert player.wait() == 0, player.stderr()
     assert server.wait() == 0, server.stderr()
     assert_complete_run(tmp_path / "run.h5", steps)
+    assert other.running() and other.get("/api/model")[1]["version"] == 1, other.stderr()
     # The page notices that its server is gone.
     wait_until(lambda: (browser.page.status_text() or "").strip() not in
                ("", (status_before or "").strip()), START_TIMEOUT_S,
