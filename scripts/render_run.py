@@ -73,6 +73,12 @@ def _raise_interrupted(signum, _frame):
     raise Interrupted(signum)
 
 
+def read_text(path):
+    """A program's output file so far, as text (bytes that are not UTF-8 replaced)."""
+    with open(path, "rb") as f:
+        return f.read().decode("utf-8", "replace")
+
+
 def default_viewer():
     return os.environ.get("TONGUE_VIEWER") or os.path.join(PROJECT, "build", "viewer",
                                                            "tongue_viewer")
@@ -120,12 +126,10 @@ class Viewer:
             time.sleep(0.05)
 
     def stdout(self):
-        with open(self.stdout_path, "rb") as f:
-            return f.read().decode("utf-8", "replace")
+        return read_text(self.stdout_path)
 
     def stderr(self):
-        with open(self.stderr_path, "rb") as f:
-            return f.read().decode("utf-8", "replace")
+        return read_text(self.stderr_path)
 
     def get_json(self, path, timeout_s=30):
         with urllib.request.urlopen(self.url.rstrip("/") + path, timeout=timeout_s) as r:

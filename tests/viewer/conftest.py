@@ -98,12 +98,10 @@ class Process:
         self.pid = self.popen.pid
 
     def stdout(self):
-        with open(self.stdout_path, "rb") as f:
-            return f.read().decode("utf-8", "replace")
+        return render_run.read_text(self.stdout_path)
 
     def stderr(self):
-        with open(self.stderr_path, "rb") as f:
-            return f.read().decode("utf-8", "replace")
+        return render_run.read_text(self.stderr_path)
 
     def running(self):
         return self.popen.poll() is None
