@@ -105,6 +105,12 @@ TEST_F(ServerLoopTest, PublishesTheModelThenStateZero) {
   ASSERT_EQ(bus_.models.size(), 1u);
   EXPECT_EQ(bus_.models[0].num_nodes, 20);
   EXPECT_EQ(bus_.models[0].muscle_names, (std::vector<std::string>{"flexor"}));
+  // The flexor's one fibre, through nodes 2, 3, 4, with no bony origin (for drawing).
+  EXPECT_EQ(bus_.models[0].fibre_muscles, (std::vector<std::int32_t>{0}));
+  EXPECT_EQ(bus_.models[0].fibre_offsets, (std::vector<std::int32_t>{0, 3}));
+  EXPECT_EQ(bus_.models[0].fibre_nodes, (std::vector<std::int32_t>{2, 3, 4}));
+  EXPECT_EQ(bus_.models[0].fibre_has_origin, (std::vector<int8_t>{0}));
+  EXPECT_EQ(bus_.models[0].num_fibre_origins, 3);
   EXPECT_DOUBLE_EQ(bus_.models[0].dt, kDt);
   ASSERT_EQ(bus_.states.size(), 1u);
   const lcmt_tongue_state& s0 = bus_.states[0];
@@ -510,6 +516,12 @@ TEST_F(ServerLoopTest, StatesCarryTheContactWithTheObstacles) {
   ASSERT_EQ(status(run(options, scene.c_str())), status(common::kExitOk));
   ASSERT_FALSE(bus_.models.empty());
   EXPECT_EQ(bus_.models.back().obstacle_names, (std::vector<std::string>{"floor"}));
+  // The floor's surface as the OBJ file has it: 4 vertices, 2 triangles, in metres.
+  EXPECT_EQ(bus_.models.back().obstacle_vertex_counts, (std::vector<std::int32_t>{4}));
+  EXPECT_EQ(bus_.models.back().obstacle_triangle_counts, (std::vector<std::int32_t>{2}));
+  EXPECT_EQ(bus_.models.back().num_obstacle_vertex_values, 12);
+  EXPECT_EQ(bus_.models.back().obstacle_triangles.size(), 6u);
+  for (double v : bus_.models.back().obstacle_vertices) EXPECT_LE(std::abs(v), 0.05 + 1e-12);
   ASSERT_EQ(bus_.states.size(), static_cast<std::size_t>(kSteps + 1));
   EXPECT_EQ(bus_.states.front().num_contacts, 0);  // at rest, 0.5 mm above the floor
   const lcmt_tongue_state& last = bus_.states.back();
