@@ -74,3 +74,37 @@ def test_signal_ends_it_with_status_130(runs, processes, signum):
     assert viewer.wait(TIMEOUT_S) == 130, (
         f"tongue_viewer ended with {viewer.popen.returncode} on {signal.Signals(signum).name}, "
         f"not 130 as the contract says; stderr: {viewer.stderr()!r}")
+
+
+def raw_request(port, data, timeout_s=TIMEOUT_S):
+    """Sends data on a fresh connection; returns what came back before the viewer closed it."""
+    with socket.create_connection(("127.0.0.1", port), timeout=timeout_s) as s:
+        s.sendall(data)
+        s.shutdown(socket.SHUT_WR)
+        reply = b""
+        while chunk := s.recv(65536):
+            reply += chunk
+    return reply
+
+
+def test_hostile_requests_leave_the_viewer_serving(runs, processes):
+    """Bytes that are not HTTP, a header beyond the limit, a body on a GET, a WebSocket upgrade
+    with nothing behind it: each is answered with an error or the connection closed, and the
+    viewer goes on serving."""
+    viewer = processes.viewer("--run", runs["sg"], "--listen", "127.0.0.1:0")
+    hostile = [
+        b"\x00\xff\x13garbage that is not HTTP\r\n\r\n",
+        b"GET / HTTP/1.1\r\nHost: x\r\nX-Long: " + b"a" * 20000 + b"\r\n\r\n",
+        b"GET /api/session HTTP/1.1\r\nHost: x\r\nContent-Length: 100000\r\n\r\n" + b"b" * 5000,
+        b"GET /ws HTTP/1.1\r\nHost: x\r\nUpgrade: websocket\r\nConnection: Upgrade\r\n"
+        b"Sec-WebSocket-Version: 13\r\nSec-WebSocket-Key: AAAAAAAAAAAAAAAAAAAAAA==\r\n\r\n",
+        b"POST /api/session HTTP/1.1\r\nHost: x\r\nContent-Length: 3\r\n\r\nabc",
+        b"GET /%00%2e%2e/etc/passwd HTTP/1.1\r\nHost: x\r\n\r\n",
+    ]
+    for data in hostile:
+        reply = raw_request(viewer.port, data)
+        assert b"root:" not in reply
+        assert reply == b"" or reply.startswith(b"HTTP/1.1 4"), reply[:200]
+        code, session = viewer.get("/api/session")
+        assert code == 200 and session["mode"] == "replay", (data[:40], session)
+    assert viewer.running(), viewer.stderr()
