@@ -40,7 +40,8 @@ std::vector<int> surface_of(const std::vector<double>& rest, const std::vector<i
     mesh.elements.push_back(hex);
   }
   std::vector<int> surface;
-  for (const fem::Quad4& q : fem::boundary_faces(mesh)) surface.insert(surface.end(), q.begin(), q.end());
+  for (const fem::Quad4& q : fem::boundary_faces(mesh))
+    surface.insert(surface.end(), q.begin(), q.end());
   return surface;
 }
 
@@ -124,8 +125,8 @@ DrawingModel drawing_model(const run_file::RunFileReader& file) {
   if (file.exists(L::kMuscleNames)) {
     const std::vector<std::string> names = file.strings(L::kMuscleNames);
     const std::vector<double> forces = file.doubles(L::kMaxForce);
-    require(forces.size() == names.size(), file.path() + ": " + L::kMaxForce +
-                                               " has not one value per muscle");
+    require(forces.size() == names.size(),
+            file.path() + ": " + L::kMaxForce + " has not one value per muscle");
     for (std::size_t i = 0; i < names.size(); ++i) m.muscles.push_back({names[i], forces[i]});
   }
   if (file.exists(L::kFibreMuscle)) {

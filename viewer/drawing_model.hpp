@@ -30,15 +30,15 @@ struct DrawingModel {
   std::vector<int> elements;           // 8 node indices per hex8
   std::vector<int> surface;            // 4 node indices per boundary quad, in cyclic order
   std::vector<Muscle> muscles;
-  std::vector<int> fibre_muscles;      // the muscle of each fibre
-  std::vector<int> fibre_offsets;      // fibre f: fibre_nodes[offsets[f] .. offsets[f + 1])
+  std::vector<int> fibre_muscles;  // the muscle of each fibre
+  std::vector<int> fibre_offsets;  // fibre f: fibre_nodes[offsets[f] .. offsets[f + 1])
   std::vector<int> fibre_nodes;
   std::vector<bool> fibre_has_origin;
-  std::vector<double> fibre_origins;   // x, y, z per fibre [m]
+  std::vector<double> fibre_origins;  // x, y, z per fibre [m]
   std::vector<Landmark> landmarks;
   std::vector<Obstacle> obstacles;
-  double dt = 0.0;                     // s
-  std::string scene;                   // the scene file's text
+  double dt = 0.0;    // s
+  std::string scene;  // the scene file's text
 
   int num_nodes() const { return static_cast<int>(rest_positions.size() / 3); }
 };

@@ -11,14 +11,14 @@
 namespace tongue::viewer {
 
 struct Frame {
-  int run = 0;                      // replay: which run file
+  int run = 0;                        // replay: which run file
   std::optional<std::int64_t> index;  // replay: the frame's index in it
   std::int64_t step = 0;
-  double time = 0.0;                // s
+  double time = 0.0;                      // s
   std::optional<std::vector<int>> nodes;  // the nodes of positions; none: every node, in order
-  std::vector<double> positions;    // x, y, z per node [m]
-  std::vector<double> activations;  // per muscle, in [0, 1]
-  std::vector<double> muscle_lengths;  // m
+  std::vector<double> positions;          // x, y, z per node [m]
+  std::vector<double> activations;        // per muscle, in [0, 1]
+  std::vector<double> muscle_lengths;     // m
   int iterations = 0;
   double residual = 0.0;   // N
   double wall_time = 0.0;  // s
@@ -27,10 +27,10 @@ struct Frame {
   std::string status = "ok";
   std::optional<double> real_time_factor;
   std::vector<int> contact_nodes;
-  std::vector<int> contact_obstacles;  // -1: not known (a run file does not say)
-  std::vector<double> contact_forces;  // x, y, z per contact [N]
+  std::vector<int> contact_obstacles;   // -1: not known (a run file does not say)
+  std::vector<double> contact_forces;   // x, y, z per contact [N]
   std::vector<double> obstacle_forces;  // x, y, z per obstacle [N]
-  double max_penetration = 0.0;          // m
+  double max_penetration = 0.0;         // m
   // A reduced model's error indicator at its last check (0: the full model) [m].
   double reduced_correction = 0.0;
 };

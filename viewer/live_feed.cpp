@@ -101,13 +101,13 @@ void LiveFeed::run() {
             u.model_version = ++version;
             u.model_json = std::make_shared<const std::string>(model_json(drawing, version));
             sink_(std::move(u));
-            status("model " + std::to_string(version) + " received: " +
-                   std::to_string(message.num_nodes) + " nodes, " +
+            status("model " + std::to_string(version) +
+                   " received: " + std::to_string(message.num_nodes) + " nodes, " +
                    std::to_string(message.num_muscles) + " muscles");
           }
         } catch (const std::invalid_argument& e) {
-          std::fprintf(stderr, "tongue_viewer: ignored a model on %s: %s\n",
-                       channels.model.c_str(), e.what());
+          std::fprintf(stderr, "tongue_viewer: ignored a model on %s: %s\n", channels.model.c_str(),
+                       e.what());
         }
       }
       if (have_model && !bus.states().empty()) {
@@ -131,9 +131,10 @@ void LiveFeed::run() {
       }
       // States rejected while none fit: the server was probably restarted with another scene
       // (its muscles differ). Forget the model and ask again.
-      if (have_model && now - last_state >= kQuietAfter && bus.rejected() > rejected_at_last_state) {
-        state_->bus = std::make_unique<controller::ControllerBus>(
-            state_->url, channels, "tongue_viewer", "tongue_viewer");
+      if (have_model && now - last_state >= kQuietAfter &&
+          bus.rejected() > rejected_at_last_state) {
+        state_->bus = std::make_unique<controller::ControllerBus>(state_->url, channels,
+                                                                  "tongue_viewer", "tongue_viewer");
         have_model = false;
         last_describe = Clock::time_point{};
         last_state = now;

@@ -35,15 +35,18 @@ void LiveHub::update(const LiveUpdate& u) {
 
 void LiveHub::join(const std::shared_ptr<Page>& page) {
   pages_[page.get()] = Watcher{page, false, 0};
-  page->send(std::make_shared<const std::string>(
-      dumped({{"type", "hello"},
-              {"mode", "live"},
-              {"model_version", model_ ? nlohmann::json(model_version_) : nlohmann::json(nullptr)}})));
+  page->send(std::make_shared<const std::string>(dumped(
+      {{"type", "hello"},
+       {"mode", "live"},
+       {"model_version", model_ ? nlohmann::json(model_version_) : nlohmann::json(nullptr)}})));
   if (!status_.empty())
-    page->send(std::make_shared<const std::string>(dumped({{"type", "status"}, {"text", status_}})));
+    page->send(
+        std::make_shared<const std::string>(dumped({{"type", "status"}, {"text", status_}})));
 }
 
-void LiveHub::leave(const Page* page) { pages_.erase(page); }
+void LiveHub::leave(const Page* page) {
+  pages_.erase(page);
+}
 
 void LiveHub::want_frame(const Page* page) {
   const auto it = pages_.find(page);
@@ -69,7 +72,8 @@ void LiveHub::broadcast(const std::string& text) {
 }
 
 std::string LiveHub::session_json() const {
-  return dumped({{"mode", "live"}, {"runs", nlohmann::json::array()}, {"bus", url_}, {"prefix", prefix_}});
+  return dumped(
+      {{"mode", "live"}, {"runs", nlohmann::json::array()}, {"bus", url_}, {"prefix", prefix_}});
 }
 
 std::string LiveHub::waiting_text() const {

@@ -115,8 +115,9 @@ HttpAnswer Routes::frame(std::string_view query) const {
   if (*run >= replay_->num_runs()) return error(404, "no run " + std::to_string(*run));
   const int r = static_cast<int>(*run);
   if (*index >= replay_->num_frames(r))
-    return error(404, "run " + std::to_string(r) + " has " + std::to_string(replay_->num_frames(r)) +
-                          " frames, no frame " + std::to_string(*index));
+    return error(404, "run " + std::to_string(r) + " has " +
+                          std::to_string(replay_->num_frames(r)) + " frames, no frame " +
+                          std::to_string(*index));
   return {200, "application/json", frame_json(replay_->frame(r, *index))};
 }
 

@@ -13,18 +13,19 @@ namespace {
 namespace L = run_file::layout;
 
 // A time series of rows values per frame, or empty when the file lacks it.
-std::vector<double> series(const run_file::RunFileReader& file, const char* name, std::size_t frames,
-                           std::size_t per_frame) {
+std::vector<double> series(const run_file::RunFileReader& file, const char* name,
+                           std::size_t frames, std::size_t per_frame) {
   if (!file.exists(name)) return {};
   std::vector<double> values = file.doubles(name);
   if (values.size() != frames * per_frame)
-    throw std::invalid_argument(file.path() + ": " + name + " holds " + std::to_string(values.size()) +
-                                " values, not " + std::to_string(per_frame) + " for each of " +
-                                std::to_string(frames) + " frames");
+    throw std::invalid_argument(
+        file.path() + ": " + name + " holds " + std::to_string(values.size()) + " values, not " +
+        std::to_string(per_frame) + " for each of " + std::to_string(frames) + " frames");
   return values;
 }
 
-std::vector<int> int_series(const run_file::RunFileReader& file, const char* name, std::size_t frames) {
+std::vector<int> int_series(const run_file::RunFileReader& file, const char* name,
+                            std::size_t frames) {
   std::vector<int> values = file.ints(name);
   if (values.size() != frames)
     throw std::invalid_argument(file.path() + ": " + name + " has not one value per frame");
@@ -66,8 +67,8 @@ RunReplay::Run RunReplay::load(const std::string& path) {
   r.status = file.has_attribute(L::kRoot, L::kStatusAttribute)
                  ? file.string_attribute(L::kRoot, L::kStatusAttribute)
                  : "";
-  r.analysis = file.has_attribute(L::kRoot, "analysis") ? file.string_attribute(L::kRoot, "analysis")
-                                                        : "";
+  r.analysis =
+      file.has_attribute(L::kRoot, "analysis") ? file.string_attribute(L::kRoot, "analysis") : "";
   return r;
 }
 
@@ -85,7 +86,7 @@ std::string RunReplay::session_json() const {
                     {"analysis", r.analysis}});
   }
   return json{{"mode", "replay"}, {"runs", runs}}.dump(-1, ' ', false,
-                                                        json::error_handler_t::replace);
+                                                       json::error_handler_t::replace);
 }
 
 Frame RunReplay::frame(int run, std::int64_t index) const {

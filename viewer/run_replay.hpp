@@ -18,7 +18,9 @@ class RunReplay {
   // JSON of /api/session.
   std::string session_json() const;
   const std::string& model_json(int run) const { return runs_.at(run).model_json; }
-  std::int64_t num_frames(int run) const { return static_cast<std::int64_t>(runs_.at(run).time.size()); }
+  std::int64_t num_frames(int run) const {
+    return static_cast<std::int64_t>(runs_.at(run).time.size());
+  }
   Frame frame(int run, std::int64_t index) const;
 
  private:

@@ -60,7 +60,8 @@ ViewerOptions parse_viewer_options(const std::vector<std::string>& args) {
       bus_named = true;
     } else if (arg == "--run") {
       if (o.run_files.size() == 2)
-        throw std::invalid_argument("--run at most twice: a run and the reference it is compared to");
+        throw std::invalid_argument(
+            "--run at most twice: a run and the reference it is compared to");
       o.run_files.push_back(value);
     } else if (arg == "--listen") {
       parse_listen(value, o);
@@ -74,7 +75,8 @@ ViewerOptions parse_viewer_options(const std::vector<std::string>& args) {
 }
 
 std::string viewer_usage() {
-  return "usage: tongue_viewer [--lcm-url URL] [--prefix TONGUE_] [--listen ADDR:PORT] [--web DIR]\n"
+  return "usage: tongue_viewer [--lcm-url URL] [--prefix TONGUE_] [--listen ADDR:PORT] [--web "
+         "DIR]\n"
          "       tongue_viewer --run RUN.h5 [--run REFERENCE.h5] [--listen ADDR:PORT] [--web DIR]\n"
          "  Serves a web page showing the tongue in 3D and in the midsagittal plane:\n"
          "  live, the states a sim_server publishes (joining late through describe), or the\n"
@@ -85,7 +87,8 @@ std::string viewer_usage() {
          "  --prefix   channel prefix of the server, A-Z 0-9 _ (default TONGUE_)\n"
          "  --run      a run file to replay; twice to compare a run with a reference\n"
          "  --listen   address and port of the page (default 127.0.0.1:8080: this machine only;\n"
-         "             0.0.0.0:8080 opens it to the network, see docs/viewer.md); port 0: any free\n"
+         "             0.0.0.0:8080 opens it to the network, see docs/viewer.md); port 0: any "
+         "free\n"
          "  --web      folder of the page's files (default the source tree's viewer/web)\n";
 }
 

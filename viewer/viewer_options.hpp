@@ -11,8 +11,8 @@ struct ViewerOptions {
   std::string prefix;                  // live: its channel prefix
   std::vector<std::string> run_files;  // replay: a run, and perhaps the reference it is compared to
   std::string listen_address = "127.0.0.1";
-  unsigned short listen_port = 8080;   // 0: any free port (printed when listening)
-  std::string web_dir;                 // the page's files
+  unsigned short listen_port = 8080;  // 0: any free port (printed when listening)
+  std::string web_dir;                // the page's files
   bool help = false;
 
   bool replay() const { return !run_files.empty(); }

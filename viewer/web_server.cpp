@@ -21,10 +21,10 @@ namespace net = boost::asio;
 using tcp = net::ip::tcp;
 using Request = http::request<http::string_body>;
 
-constexpr std::size_t kMaxConnections = 64;  // HTTP and WebSocket together
+constexpr std::size_t kMaxConnections = 64;       // HTTP and WebSocket together
 constexpr auto kIdle = std::chrono::seconds(30);  // an HTTP request must arrive within this
-constexpr std::size_t kMaxHeader = 8192;      // bytes of a request's header
-constexpr std::size_t kMaxBody = 1024;        // bytes of a request's body (GETs have none)
+constexpr std::size_t kMaxHeader = 8192;          // bytes of a request's header
+constexpr std::size_t kMaxBody = 1024;            // bytes of a request's body (GETs have none)
 constexpr std::size_t kMaxPageMessage = 4096;  // bytes of a message from a page ({"type":"next"})
 constexpr std::size_t kMaxQueued = 64;  // messages waiting for a page that does not read: cut off
 
@@ -76,7 +76,8 @@ class WsPage : public Page, public std::enable_shared_from_this<WsPage> {
       const nlohmann::json j = nlohmann::json::parse(text, nullptr, false);
       if (j.is_object()) {
         const auto type = j.find("type");
-        if (type != j.end() && type->is_string() && *type == "next") self->hub_.want_frame(self.get());
+        if (type != j.end() && type->is_string() && *type == "next")
+          self->hub_.want_frame(self.get());
       }
       self->read();
     });
@@ -141,7 +142,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     if (websocket::is_upgrade(request)) {
       if (hub_ && request.target() == "/ws") {
         stream_.expires_never();
-        std::make_shared<WsPage>(stream_.release_socket(), *hub_, count_)->start(std::move(request));
+        std::make_shared<WsPage>(stream_.release_socket(), *hub_, count_)
+            ->start(std::move(request));
         return;
       }
       return reply(request, {404, "text/plain", "no WebSocket here (a replay has none)"});
@@ -194,18 +196,19 @@ struct WebServer::Impl : std::enable_shared_from_this<WebServer::Impl> {
       : io(io), acceptor(io), routes(routes), hub(hub) {}
 
   void accept() {
-    acceptor.async_accept(io, [self = shared_from_this()](beast::error_code ec, tcp::socket socket) {
-      if (ec == net::error::operation_aborted) return;
-      if (!ec) {
-        if (*self->open >= kMaxConnections) {
-          socket.close(ec);  // too many: refused, the others go on
-        } else {
-          std::make_shared<HttpSession>(std::move(socket), self->routes, self->hub, self->open)
-              ->read();
-        }
-      }
-      self->accept();
-    });
+    acceptor.async_accept(
+        io, [self = shared_from_this()](beast::error_code ec, tcp::socket socket) {
+          if (ec == net::error::operation_aborted) return;
+          if (!ec) {
+            if (*self->open >= kMaxConnections) {
+              socket.close(ec);  // too many: refused, the others go on
+            } else {
+              std::make_shared<HttpSession>(std::move(socket), self->routes, self->hub, self->open)
+                  ->read();
+            }
+          }
+          self->accept();
+        });
   }
 
   net::io_context& io;
@@ -238,8 +241,12 @@ WebServer::~WebServer() {
   impl_->acceptor.close(ignored);
 }
 
-unsigned short WebServer::port() const { return impl_->acceptor.local_endpoint().port(); }
+unsigned short WebServer::port() const {
+  return impl_->acceptor.local_endpoint().port();
+}
 
-void WebServer::start() { impl_->accept(); }
+void WebServer::start() {
+  impl_->accept();
+}
 
 }  // namespace tongue::viewer

@@ -38,7 +38,8 @@ class ReplayRoutes : public ::testing::Test {
     mesh.elements = {{0, 1, 2, 3, 4, 5, 6, 7}};
     run_file::RunFileWriter w(run_, mesh, "scene: text", {}, {}, {});
     Eigen::VectorXd x(24);
-    for (int i = 0; i < 8; ++i) x.segment<3>(3 * i) = Eigen::Map<const Eigen::Vector3d>(mesh.nodes[i].data());
+    for (int i = 0; i < 8; ++i)
+      x.segment<3>(3 * i) = Eigen::Map<const Eigen::Vector3d>(mesh.nodes[i].data());
     w.append(0.0, x, {}, {});
     x(0) += 0.001;
     w.append(0.004, x, {}, {});
@@ -93,7 +94,8 @@ TEST_F(ReplayRoutes, BadFrameRequestsAreAnsweredWithAReason) {
 }
 
 TEST(RunReplay, ABadRunFileIsRefusedNamingIt) {
-  const fs::path path = fs::temp_directory_path() / ("not_a_run_" + std::to_string(::getpid()) + ".h5");
+  const fs::path path =
+      fs::temp_directory_path() / ("not_a_run_" + std::to_string(::getpid()) + ".h5");
   std::ofstream(path) << "plain text";
   try {
     RunReplay replay({path.string()});

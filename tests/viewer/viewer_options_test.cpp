@@ -6,7 +6,9 @@
 namespace tongue::viewer {
 namespace {
 
-ViewerOptions parse(std::vector<std::string> args) { return parse_viewer_options(args); }
+ViewerOptions parse(std::vector<std::string> args) {
+  return parse_viewer_options(args);
+}
 
 TEST(ViewerOptions, LiveOnLocalhostByDefault) {
   const ViewerOptions o = parse({});
