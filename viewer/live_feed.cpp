@@ -3,8 +3,8 @@
 #include <chrono>
 #include <cstdio>
 #include <deque>
-#include <mutex>
 
+#include "common/rate_limited_reporter.hpp"
 #include "controller/controller_bus.hpp"
 
 namespace tongue::viewer {
@@ -37,8 +37,7 @@ std::optional<double> RealTimeFactor::add(double simulated_s, double wall_s) {
 struct LiveFeed::State {
   std::string url, prefix;
   std::unique_ptr<controller::ControllerBus> bus;
-  mutable std::mutex mutex;
-  std::string failure;
+  common::RateLimitedReporter reports;  // a model refused: at most a line a second
 };
 
 LiveFeed::LiveFeed(const std::string& url, const std::string& prefix, Sink sink)
@@ -53,11 +52,6 @@ LiveFeed::LiveFeed(const std::string& url, const std::string& prefix, Sink sink)
 LiveFeed::~LiveFeed() {
   stop_ = true;
   thread_.join();
-}
-
-std::string LiveFeed::failure() const {
-  std::lock_guard lock(state_->mutex);
-  return state_->failure;
 }
 
 void LiveFeed::run() {
@@ -106,8 +100,8 @@ void LiveFeed::run() {
                    std::to_string(message.num_muscles) + " muscles");
           }
         } catch (const std::invalid_argument& e) {
-          std::fprintf(stderr, "tongue_viewer: ignored a model on %s: %s\n", channels.model.c_str(),
-                       e.what());
+          state_->reports.report(
+              "model", "tongue_viewer: ignored a model on " + channels.model + ": " + e.what());
         }
       }
       if (have_model && !bus.states().empty()) {
@@ -142,10 +136,7 @@ void LiveFeed::run() {
       }
     }
   } catch (const std::exception& e) {
-    {
-      std::lock_guard lock(state_->mutex);
-      state_->failure = e.what();
-    }
+    std::fprintf(stderr, "tongue_viewer: the bus failed: %s\n", e.what());
     status(std::string("the bus failed: ") + e.what());
   }
 }

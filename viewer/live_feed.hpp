@@ -3,7 +3,8 @@
 // passive controller would (controller::ControllerBus: every message checked, a state against
 // its model), never sending an activation. It asks for the model with "describe" until one comes
 // (so a viewer may join late), keeps only the newest state, and hands what changed to a callback
-// (called on the feed's thread; it must not block).
+// (called on the feed's thread; it must not block). If the bus fails, the thread says why (on
+// stderr and to the sink) and ends; the pages keep what they have.
 #include <atomic>
 #include <cstdint>
 #include <functional>
@@ -36,9 +37,6 @@ class LiveFeed {
   ~LiveFeed();
   LiveFeed(const LiveFeed&) = delete;
   LiveFeed& operator=(const LiveFeed&) = delete;
-
-  // Why the thread ended (the bus failed), or empty while it runs.
-  std::string failure() const;
 
  private:
   struct State;
