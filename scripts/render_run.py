@@ -24,7 +24,8 @@ Runs on Debian's /usr/bin/python3 (python3-selenium, /usr/bin/chromium, /usr/bin
 The viewer and the browser are stopped on every way out (done, error, SIGINT, SIGTERM).
 
 Exit status: 0 done; 1 bad command line, missing file, the viewer failing to start (its stderr
-is shown) or the page failing; 2 --mp4 without ffmpeg on PATH; 130 interrupted.
+is shown), the page failing, or --mp4 without ffmpeg on PATH (the project's statuses,
+docs/exit_codes.md: 2 means an unconverged step there); 130 interrupted.
 """
 import argparse
 import json
@@ -56,11 +57,7 @@ PAGE_TIMEOUT_S = 120
 
 
 class Failure(Exception):
-    """A one-line error for the user; the exit status goes with it."""
-
-    def __init__(self, message, status=1):
-        super().__init__(message)
-        self.status = status
+    """A one-line error for the user; the program then exits 1."""
 
 
 class Interrupted(BaseException):
@@ -358,7 +355,7 @@ def render(args):
         ffmpeg = shutil.which("ffmpeg")
         if ffmpeg is None:
             raise Failure("--mp4 needs ffmpeg on PATH, which has none (apt-get install ffmpeg); "
-                          "no frames were drawn", status=2)
+                          "no frames were drawn")
     out = args.out or os.path.splitext(args.run)[0] + "_frames"
     program = args.viewer or default_viewer()
     viewer_args = ["--run", os.path.abspath(args.run)]
@@ -418,7 +415,7 @@ def main(argv=None):
         return 0
     except Failure as e:
         print(f"{PROG}: {e}", file=sys.stderr, flush=True)
-        return e.status
+        return 1
     except Interrupted as e:
         print(f"{PROG}: stopped by {signal.Signals(e.signum).name}", file=sys.stderr, flush=True)
         return 130

@@ -84,10 +84,10 @@ def test_errors_are_one_line(runs, tmp_path):
     assert done.returncode == 1 and len(lines) == 1, done.stderr
     assert "tongue_viewer exited with status" in lines[0] and str(notes) in lines[0], lines
     assert not (tmp_path / "frames").exists()
-    # --mp4 without ffmpeg on PATH: status 2 before anything starts.
+    # --mp4 without ffmpeg on PATH: status 1 (missing tool) before anything starts.
     done = render(runs["sg"], "--mp4", tmp_path / "x.mp4", "--out", tmp_path / "frames",
                   env={**os.environ, "PATH": str(tmp_path / "empty_path")})
-    assert done.returncode == 2 and "ffmpeg" in done.stderr and len(done.stderr.splitlines()) == 1
+    assert done.returncode == 1 and "ffmpeg" in done.stderr and len(done.stderr.splitlines()) == 1
     assert not (tmp_path / "frames").exists()
 
 
