@@ -24,6 +24,15 @@ std::vector<double> series(const run_file::RunFileReader& file, const char* name
   return values;
 }
 
+// The same, for a series the run must have (RunFileError-like message when it lacks it).
+std::vector<double> required_series(const run_file::RunFileReader& file, const char* name,
+                                    std::size_t frames, std::size_t per_frame) {
+  std::vector<double> values = series(file, name, frames, per_frame);
+  if (values.empty() && frames * per_frame > 0)
+    throw std::invalid_argument(file.path() + ": " + name + ": missing");
+  return values;
+}
+
 std::vector<int> int_series(const run_file::RunFileReader& file, const char* name,
                             std::size_t frames) {
   std::vector<int> values = file.ints(name);
@@ -50,19 +59,18 @@ RunReplay::Run RunReplay::load(const std::string& path) {
   r.time = file.doubles(L::kTime);
   const std::size_t frames = r.time.size();
   if (frames == 0) throw std::invalid_argument(path + ": the run has no frame");
-  r.positions = series(file, L::kPositions, frames, 3 * r.nodes);
-  if (r.positions.empty()) throw std::invalid_argument(path + ": " + L::kPositions + ": missing");
-  r.activations = series(file, L::kActivations, frames, r.muscles);
-  r.lengths = series(file, L::kMuscleLength, frames, r.muscles);
+  r.positions = required_series(file, L::kPositions, frames, 3 * r.nodes);
+  r.activations = required_series(file, L::kActivations, frames, r.muscles);
+  r.lengths = required_series(file, L::kMuscleLength, frames, r.muscles);
   r.residual = series(file, L::kResidual, frames, 1);
   r.wall_time = series(file, L::kWallTime, frames, 1);
   r.correction = series(file, L::kReducedCorrection, frames, 1);
   r.iterations = int_series(file, L::kIterations, frames);
   r.cuts = int_series(file, L::kCuts, frames);
   if (r.obstacles > 0) {
-    r.node_forces = series(file, L::kContactNodeForce, frames, 3 * r.nodes);
-    r.obstacle_forces = series(file, L::kContactObstacleForce, frames, 3 * r.obstacles);
-    r.penetration = series(file, L::kContactMaxPenetration, frames, 1);
+    r.node_forces = required_series(file, L::kContactNodeForce, frames, 3 * r.nodes);
+    r.obstacle_forces = required_series(file, L::kContactObstacleForce, frames, 3 * r.obstacles);
+    r.penetration = required_series(file, L::kContactMaxPenetration, frames, 1);
   }
   r.status = file.has_attribute(L::kRoot, L::kStatusAttribute)
                  ? file.string_attribute(L::kRoot, L::kStatusAttribute)

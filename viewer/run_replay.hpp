@@ -31,6 +31,8 @@ class RunReplay {
     std::vector<double> time, positions, activations, lengths, residual, wall_time, correction;
     std::vector<int> iterations, cuts;
     std::vector<double> node_forces, obstacle_forces, penetration;  // empty without obstacles
+    // activations and lengths are empty without muscles, residual, wall_time and correction
+    // when the file lacks them (older files); the others are required.
   };
   static Run load(const std::string& path);
   std::vector<Run> runs_;

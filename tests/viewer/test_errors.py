@@ -2,6 +2,7 @@
 with status 1 (the project's convention for bad input or an I/O error, docs/exit_codes.md) and
 one line on stderr naming the file or the address. And its end on SIGINT or SIGTERM: status 130
 (the project's convention for an interrupted program)."""
+import shutil
 import signal
 import socket
 import subprocess
@@ -49,6 +50,18 @@ def test_bad_run_file_is_named(bad_files, kind):
 def test_bad_reference_run_file_is_named(runs, bad_files):
     done = run_viewer("--run", runs["sg"], "--run", bad_files["text"], "--listen", "127.0.0.1:0")
     assert_one_line_error(done, bad_files["text"])
+
+
+@pytest.mark.parametrize("dataset", ["muscles/length", "activations", "positions"])
+def test_run_file_lacking_a_series_is_named(runs, tmp_path, dataset):
+    """A run file cut short of a series the page draws is refused before anything is served."""
+    cut = tmp_path / "cut.h5"
+    shutil.copy(runs["sg"], cut)
+    with h5py.File(cut, "a") as f:
+        del f[dataset]
+    done = run_viewer("--run", str(cut), "--listen", "127.0.0.1:0")
+    assert_one_line_error(done, str(cut))
+    assert "/" + dataset in done.stderr, done.stderr
 
 
 def test_port_in_use_is_named(runs):
