@@ -1,7 +1,7 @@
 // The Python module `tongue`: the simulator in-process (Simulation), run files (RunFile) and a
 // controller's connection to a server (BusClient, bus_client_bindings.cpp). NumPy arrays in SI
 // units; the library's exceptions become Python's (std::invalid_argument: ValueError, others:
-// RuntimeError) with the library's messages. A step releases the GIL.
+// RuntimeError) with the library's messages. A step and a reset release the GIL.
 #include <pybind11/eigen.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -87,7 +87,15 @@ PYBIND11_MODULE(tongue, m) {
            "One step of dt with the levels of the muscles or groups named ({'SG': 0.125} sets "
            "SG_left and SG_right); the others keep the last step's levels.")
       .def(
-          "reset", [](Simulation& s) { return warn(s.reset()); },
+          "reset",
+          [](Simulation& s) {
+            std::vector<std::string> warnings;
+            {
+              py::gil_scoped_release release;
+              warnings = s.reset();
+            }
+            return warn(warnings);
+          },
           "Back to the settled state at time 0 with all levels 0; the run that follows repeats "
           "the first one exactly, its warnings too. Returns finish_checks() of the run that "
           "ended (also issued as RuntimeWarning).")
