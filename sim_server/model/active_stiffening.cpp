@@ -47,7 +47,9 @@ bool ActiveStiffening::add_element_weights(double load_factor, std::vector<doubl
   const std::vector<double> w = extra_weights(load_factor);
   if (w.empty()) return true;
   if (weights.empty()) weights.assign(w.size(), 1.0);
-  for (std::size_t e = 0; e < w.size(); ++e) weights[e] += w[e];
+  // Element e's energy is (1 + w_e) times the material's: under a cubature weight (a
+  // hyper-reduction sample) its stiffening is integrated by the same rule.
+  for (std::size_t e = 0; e < w.size(); ++e) weights[e] *= 1.0 + w[e];
   return true;
 }
 

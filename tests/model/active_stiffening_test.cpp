@@ -104,6 +104,33 @@ TEST(ActiveStiffening, FoldedIntoTheSolidsPassGivesTheSameResidualAndTangent) {
   EXPECT_LT(k_diff, 1e-13 * k_norm);
 }
 
+// With element weights (a hyper-reduction sample: elements 0 and 1 of weights 2 and 3, element 2
+// not sampled) the folded stiffening scales each sampled element's weight by 1 + (ratio - 1) a:
+// the stiffening is integrated over the sample, and an unsampled element stays unevaluated
+// (an inverted element 2 would otherwise be reported).
+TEST(ActiveStiffening, FoldedIntoASampleScalesTheSampledElementsOnly) {
+  const Fixture f = make();
+  const double ratio = 5.0, a = 0.6;
+  f.muscles->set_activation(0, a);
+  fem::MechanicalSystem system(f.solid);
+  system.add_load(std::make_shared<ActiveStiffening>(f.solid, f.muscles, ratio));
+  const fem::Vector u = deformed(*f.solid);
+  const std::vector<double> sample{2.0, 3.0, 0.0};
+  fem::Vector r;
+  fem::SymmetricMatrix K(f.solid->pattern());
+  ASSERT_TRUE(system.residual(u, 1.0, r, &K, nullptr, &sample).ok);
+
+  fem::Vector expected = fem::Vector::Zero(u.size());
+  fem::SymmetricMatrix expected_K(f.solid->pattern());
+  ASSERT_TRUE(
+      f.solid->add_weighted(u, {2.0, 3.0 * (1.0 + (ratio - 1.0) * a), 0.0}, expected, &expected_K)
+          .ok);
+  // The same weights, one product apart: round-off.
+  EXPECT_LT((r - expected).norm(), 1e-14 * expected.norm());
+  for (std::size_t k = 0; k < K.values().size(); ++k)
+    EXPECT_NEAR(K.values()[k], expected_K.values()[k], 1e-14 * std::abs(expected_K.values()[k]));
+}
+
 TEST(ActiveStiffening, RejectsARatioBelowOne) {
   const Fixture f = make();
   EXPECT_THROW(ActiveStiffening(f.solid, f.muscles, 0.9), std::invalid_argument);

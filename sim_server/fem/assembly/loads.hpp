@@ -29,10 +29,11 @@ class ForceContribution {
                    SymmetricMatrix* stiffness) const = 0;
   // A load that is a multiple of the solid's own energy on some elements (active muscle
   // stiffening) may instead be folded into the solid's assembly as element weights, so that
-  // each element is evaluated once: it then adds load_factor times its weight of each element
-  // to `weights` (filling an empty vector with 1 first, and leaving it empty while it adds
-  // nothing) and returns true, and the caller does not call add() for the residual. The
-  // default: false, not such a load.
+  // each element is evaluated once: an element whose energy the load makes (1 + s_e) times the
+  // material's has its weight multiplied by 1 + s_e (an empty vector, all 1, is filled with 1
+  // first, and left empty while the load adds nothing) and it returns true, and the caller does
+  // not call add() for the residual. Weights that are a cubature over a sample of the elements
+  // so integrate the load over the same sample. The default: false, not such a load.
   virtual bool add_element_weights(double /*load_factor*/, std::vector<double>& /*weights*/) const {
     return false;
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <limits>
 #include <mutex>
+#include <numeric>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -38,15 +39,14 @@ SolidModel::SolidModel(Mesh mesh, std::shared_ptr<const Material> material, Form
     }
   }
   if (material_->as_uncoupled() != nullptr) {
-    for (int first = 0; first < mesh_.num_elements(); first += kBatchLanes) {
-      const int count = std::min(kBatchLanes, mesh_.num_elements() - first);
-      batches_.push_back(make_batch_geometry(std::span(geometry_).subspan(first, count)));
-    }
+    std::vector<int> all(mesh_.elements.size());
+    std::iota(all.begin(), all.end(), 0);
+    all_batches_ = std::make_shared<const BatchLayout>(make_layout(std::move(all)));
   }
   AssemblyPattern assembly = build_assembly_pattern(mesh_, dofs_, extra_node_pairs);
   pattern_ = std::make_shared<const SparsityPattern>(std::move(assembly.pattern));
   element_scatter_ = std::move(assembly.element_scatter);
-  if (!batches_.empty()) {
+  if (all_batches_) {
     tangent_begin_.reserve(mesh_.elements.size() + 1);
     tangent_begin_.push_back(0);
     for (const auto& map : element_scatter_) {
@@ -151,7 +151,7 @@ AssemblyStatus SolidModel::add_weighted(const Vector& u, const std::vector<doubl
   if (!weights.empty() && static_cast<int>(weights.size()) != mesh_.num_elements()) {
     throw std::invalid_argument("element weights: one per element expected");
   }
-  if (!batches_.empty()) return add_batches(u, weights, internal_force, stiffness, strain_energy);
+  if (all_batches_) return add_batches(u, weights, internal_force, stiffness, strain_energy);
   const bool want_stiffness = stiffness != nullptr;
   const auto weight = [&](int e) { return weights.empty() ? 1.0 : weights[e]; };
   AssemblyStatus status;
@@ -222,12 +222,44 @@ AssemblyStatus SolidModel::add_weighted(const Vector& u, const std::vector<doubl
   return status;
 }
 
-BatchCoords SolidModel::batch_coords(int b, const Vector& u) const {
+SolidModel::BatchLayout SolidModel::make_layout(std::vector<int> elements) const {
+  BatchLayout layout;
+  std::vector<ElementGeometry> lanes;
+  for (std::size_t first = 0; first < elements.size(); first += kBatchLanes) {
+    lanes.clear();
+    for (std::size_t i = first; i < std::min(elements.size(), first + kBatchLanes); ++i)
+      lanes.push_back(geometry_[elements[i]]);
+    layout.batches.push_back(make_batch_geometry(lanes));
+  }
+  layout.elements = std::move(elements);
+  return layout;
+}
+
+std::shared_ptr<const SolidModel::BatchLayout> SolidModel::layout_for(
+    const std::vector<double>& weights) const {
+  if (weights.empty()) return all_batches_;
+  std::vector<int> weighted;
+  int touched = 0;
+  for (int first = 0; first < mesh_.num_elements(); first += kBatchLanes) {
+    const std::size_t before = weighted.size();
+    for (int e = first; e < std::min(mesh_.num_elements(), first + kBatchLanes); ++e)
+      if (weights[e] != 0.0) weighted.push_back(e);
+    touched += weighted.size() > before ? 1 : 0;
+  }
+  const int packed_count = static_cast<int>((weighted.size() + kBatchLanes - 1) / kBatchLanes);
+  if (packed_count >= touched) return all_batches_;
+  const std::lock_guard lock(packed_mutex_);
+  if (!packed_ || packed_->elements != weighted)
+    packed_ = std::make_shared<const BatchLayout>(make_layout(std::move(weighted)));
+  return packed_;
+}
+
+BatchCoords SolidModel::batch_coords(const BatchLayout& layout, int b, const Vector& u) const {
   BatchCoords x;
-  const int count = batches_[b].count;
+  const int count = layout.batches[b].count;
   for (int l = 0; l < kBatchLanes; ++l) {
     // Lanes past count repeat the batch's first element, as its geometry does.
-    const int e = kBatchLanes * b + (l < count ? l : 0);
+    const int e = layout.elements[kBatchLanes * b + (l < count ? l : 0)];
     const hex8::ElementCoords& X = rest_coords_[e];
     const Hex8& nodes = mesh_.elements[e];
     for (int a = 0; a < 8; ++a)
@@ -236,14 +268,14 @@ BatchCoords SolidModel::batch_coords(int b, const Vector& u) const {
   return x;
 }
 
-bool SolidModel::add_batch_result(int b, const ElementBatchResponse& r,
+bool SolidModel::add_batch_result(const BatchLayout& layout, int b, const ElementBatchResponse& r,
                                   const ElementBatchTangent* tangent,
                                   const std::vector<double>& weights, Vector& internal_force,
                                   SymmetricMatrix* K, double* strain_energy,
                                   AssemblyStatus& status) const {
   double* values = K ? K->values().data() : nullptr;
-  for (int l = 0; l < batches_[b].count; ++l) {
-    const int e = kBatchLanes * b + l;
+  for (int l = 0; l < layout.batches[b].count; ++l) {
+    const int e = layout.elements[kBatchLanes * b + l];
     const double w = weights.empty() ? 1.0 : weights[e];
     if (w == 0.0) continue;
     status.min_J = std::min(status.min_J, r.min_J.lane[l]);
@@ -293,26 +325,31 @@ AssemblyStatus SolidModel::add_batches(const Vector& u, const std::vector<double
   const UncoupledMaterial& material = *material_->as_uncoupled();
   AssemblyStatus status;
   status.min_J = std::numeric_limits<double>::infinity();
+  const std::shared_ptr<const BatchLayout> held = layout_for(weights);
+  const BatchLayout& layout = *held;
   // A batch whose elements all have weight 0 is skipped, as the element loop skips them.
   const auto active = [&](int b) {
     if (weights.empty()) return true;
-    for (int l = 0; l < batches_[b].count; ++l)
-      if (weights[kBatchLanes * b + l] != 0.0) return true;
+    for (int l = 0; l < layout.batches[b].count; ++l)
+      if (weights[layout.elements[kBatchLanes * b + l]] != 0.0) return true;
     return false;
   };
   const auto force = [&](int b, ElementBatchResponse& r) {
-    evaluate_batch_force(batches_[b], batch_coords(b, u), material, formulation_, r);
+    evaluate_batch_force(layout.batches[b], batch_coords(layout, b, u), material, formulation_, r);
   };
   const auto tangent = [&](int b, ElementBatchTangent& t) {
-    evaluate_batch_tangent(batches_[b], batch_coords(b, u), material, formulation_, t);
+    evaluate_batch_tangent(layout.batches[b], batch_coords(layout, b, u), material, formulation_,
+                           t);
   };
   const auto add_force = [&](int b, const ElementBatchResponse& r) {
-    return add_batch_result(b, r, nullptr, weights, internal_force, nullptr, strain_energy, status);
+    return add_batch_result(layout, b, r, nullptr, weights, internal_force, nullptr, strain_energy,
+                            status);
   };
   const auto add_tangent = [&](int b, const ElementBatchTangent& t) {
-    return add_batch_result(b, t.response, &t, weights, internal_force, K, strain_energy, status);
+    return add_batch_result(layout, b, t.response, &t, weights, internal_force, K, strain_energy,
+                            status);
   };
-  const int num_batches = static_cast<int>(batches_.size());
+  const int num_batches = static_cast<int>(layout.batches.size());
 
   if (!pool_) {
     if (K == nullptr) {

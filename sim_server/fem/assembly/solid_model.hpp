@@ -5,6 +5,7 @@
 // stiffness, mass and body forces; it knows nothing of time stepping or of where loads come from.
 #include <cstdint>
 #include <memory>
+#include <mutex>
 #include <utility>
 #include <vector>
 
@@ -92,12 +93,25 @@ class SolidModel {
   AssemblyStatus add_batches(const Vector& u, const std::vector<double>& weights,
                              Vector& internal_force, SymmetricMatrix* K,
                              double* strain_energy) const;
-  BatchCoords batch_coords(int b, const Vector& u) const;
+  // Elements packed into batches: batch b holds elements[kBatchLanes b] onwards (count of
+  // them, ascending).
+  struct BatchLayout {
+    std::vector<int> elements;
+    std::vector<ElementBatchGeometry> batches;
+  };
+  BatchLayout make_layout(std::vector<int> elements) const;
+  // The layout to evaluate the elements of nonzero weight with: every element's (empty
+  // weights), or, when they fill fewer batches packed than they touch of it, a layout of their
+  // own, kept while the same elements are weighted (a hyper-reduction sample: a few hundred
+  // elements of a mesh spread over nearly every batch of eight).
+  std::shared_ptr<const BatchLayout> layout_for(const std::vector<double>& weights) const;
+  BatchCoords batch_coords(const BatchLayout& layout, int b, const Vector& u) const;
   // Adds batch b's weighted forces, energies and (with K) stiffnesses in element order; false,
   // with status telling which element, at an inverted element.
-  bool add_batch_result(int b, const ElementBatchResponse& r, const ElementBatchTangent* tangent,
-                        const std::vector<double>& weights, Vector& internal_force,
-                        SymmetricMatrix* K, double* strain_energy, AssemblyStatus& status) const;
+  bool add_batch_result(const BatchLayout& layout, int b, const ElementBatchResponse& r,
+                        const ElementBatchTangent* tangent, const std::vector<double>& weights,
+                        Vector& internal_force, SymmetricMatrix* K, double* strain_energy,
+                        AssemblyStatus& status) const;
 
   Mesh mesh_;
   std::shared_ptr<const Material> material_;
@@ -106,8 +120,10 @@ class SolidModel {
   DofMap dofs_;
   Vector rest_positions_;
   std::vector<ElementGeometry> geometry_;
-  std::vector<ElementBatchGeometry> batches_;     // empty unless the material is uncoupled
-  std::vector<hex8::ElementCoords> rest_coords_;  // per element, gathered once
+  std::shared_ptr<const BatchLayout> all_batches_;  // null unless the material is uncoupled
+  mutable std::mutex packed_mutex_;
+  mutable std::shared_ptr<const BatchLayout> packed_;  // the last packed layout, or null
+  std::vector<hex8::ElementCoords> rest_coords_;       // per element, gathered once
   std::shared_ptr<const SparsityPattern> pattern_;
   std::vector<std::array<int, 24 * 24>> element_scatter_;
   // The tangent kernel's scatter (uncoupled materials): element e adds stiffness entry

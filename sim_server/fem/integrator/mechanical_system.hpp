@@ -26,7 +26,7 @@ class MechanicalSystem {
   // When load_norm is given it receives ||load_factor f_ext(u)|| over the free dofs [N], a scale
   // for r. With element_weights (one per element) the solid's own elements count with those
   // weights instead of 1, elements of weight 0 not evaluated (hyper-reduction integrates over a
-  // weighted sample of them); the folded loads add theirs on top.
+  // weighted sample of them), and the folded loads scale those weights.
   AssemblyStatus residual(const Vector& u, double load_factor, Vector& r,
                           SymmetricMatrix* stiffness, double* load_norm = nullptr,
                           const std::vector<double>* element_weights = nullptr) const;

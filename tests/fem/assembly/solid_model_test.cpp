@@ -140,7 +140,26 @@ struct BatchCase {
   std::string material;
   Formulation formulation;
   double dilation;  // uniform stretch applied on top of the deformation
+  // Weights on every third element only (a hyper-reduction sample: evaluated packed into
+  // batches of their own) instead of on all but three (evaluated in the mesh's batches).
+  bool sample = false;
 };
+
+// The elements' weights of a case: some 0 (elements skipped), the others between 1 and 2.
+std::vector<double> case_weights(const BatchCase& c, int elements) {
+  std::vector<double> weights(elements);
+  for (int e = 0; e < elements; ++e) {
+    const bool weighted = c.sample ? e % 3 == 0 : e % 29 != 1;
+    weights[e] = weighted ? 1.0 + 0.25 * (e % 5) : 0.0;
+  }
+  return weights;
+}
+
+std::string batch_case_name(const ::testing::TestParamInfo<BatchCase>& info) {
+  return info.param.material +
+         (info.param.formulation == Formulation::standard ? "_standard" : "_mean_dilatation") +
+         (info.param.dilation > 1.0 ? "_dilated" : "") + (info.param.sample ? "_sample" : "");
+}
 
 class BatchedResidual : public ::testing::TestWithParam<BatchCase> {};
 
@@ -149,7 +168,8 @@ class BatchedResidual : public ::testing::TestWithParam<BatchCase> {};
 // summed element by element: on a 5 x 4 x 3 box (60 elements: 7 full batches and a partial one),
 // with element weights of which some are 0 (elements skipped), with and without the I2 terms
 // (mooney_rivlin5, neo_hookean), and dilated by 1.5 (det F above 2, where the kernel takes
-// std::cbrt instead of its own J^{-1/3}).
+// std::cbrt instead of its own J^{-1/3}); weights on a sample of the elements are evaluated in
+// batches packed of the sample alone.
 TEST_P(BatchedResidual, EqualsTheReferenceElementSummedOverTheMesh) {
   const BatchCase c = GetParam();
   const Mesh mesh = distorted_box(5, 4, 3);
@@ -159,9 +179,7 @@ TEST_P(BatchedResidual, EqualsTheReferenceElementSummedOverTheMesh) {
   const SolidModel model(mesh, material, c.formulation, kDensity, {});
   const Vector u = displacement_field(
       mesh, [&](const Vec3& X) { return Vec3(c.dilation * (X + deformation(X)) - X); });
-  std::vector<double> weights(mesh.num_elements());
-  for (int e = 0; e < mesh.num_elements(); ++e)
-    weights[e] = e % 4 == 1 ? 0.0 : 1.0 + 0.25 * (e % 3);
+  const std::vector<double> weights = case_weights(c, mesh.num_elements());
 
   Vector f = Vector::Zero(model.num_dofs());
   double energy = 0.0;
@@ -206,12 +224,10 @@ INSTANTIATE_TEST_SUITE_P(
                       BatchCase{"mooney_rivlin5", Formulation::standard, 1.0},
                       BatchCase{"mooney_rivlin5", Formulation::mean_dilatation, 1.5},
                       BatchCase{"neo_hookean", Formulation::mean_dilatation, 1.0},
-                      BatchCase{"neo_hookean", Formulation::standard, 1.5}),
-    [](const auto& info) {
-      return info.param.material +
-             (info.param.formulation == Formulation::standard ? "_standard" : "_mean_dilatation") +
-             (info.param.dilation > 1.0 ? "_dilated" : "");
-    });
+                      BatchCase{"neo_hookean", Formulation::standard, 1.5},
+                      BatchCase{"mooney_rivlin5", Formulation::mean_dilatation, 1.0, true},
+                      BatchCase{"neo_hookean", Formulation::standard, 1.5, true}),
+    batch_case_name);
 
 class BatchedTangent : public ::testing::TestWithParam<BatchCase> {};
 
@@ -219,7 +235,7 @@ class BatchedTangent : public ::testing::TestWithParam<BatchCase> {};
 // time (hex8_batch_tangent.hpp). The assembled tangent, force and energy are those of the
 // reference element summed element by element over the free dofs: on a 5 x 4 x 3 box (7 full
 // batches and a partial one) with prescribed dofs (entries dropped), element weights of which
-// some are 0, with and without the I2 terms, dilated by 1.5 in one case.
+// some are 0 (or a sample's, packed), with and without the I2 terms, dilated by 1.5 in one case.
 TEST_P(BatchedTangent, EqualsTheReferenceElementAssembled) {
   const BatchCase c = GetParam();
   const Mesh mesh = distorted_box(5, 4, 3);
@@ -231,9 +247,7 @@ TEST_P(BatchedTangent, EqualsTheReferenceElementAssembled) {
   ASSERT_LT(dofs.num_free(), dofs.num_dofs());
   const Vector u = displacement_field(
       mesh, [&](const Vec3& X) { return Vec3(c.dilation * (X + deformation(X)) - X); });
-  std::vector<double> weights(mesh.num_elements());
-  for (int e = 0; e < mesh.num_elements(); ++e)
-    weights[e] = e % 4 == 1 ? 0.0 : 1.0 + 0.25 * (e % 3);
+  const std::vector<double> weights = case_weights(c, mesh.num_elements());
 
   Vector f = Vector::Zero(model.num_dofs());
   SymmetricMatrix K(model.pattern());
@@ -282,12 +296,31 @@ INSTANTIATE_TEST_SUITE_P(
                       BatchCase{"mooney_rivlin5", Formulation::standard, 1.0},
                       BatchCase{"mooney_rivlin5", Formulation::mean_dilatation, 1.5},
                       BatchCase{"neo_hookean", Formulation::mean_dilatation, 1.0},
-                      BatchCase{"exponential", Formulation::standard, 1.5}),
-    [](const auto& info) {
-      return info.param.material +
-             (info.param.formulation == Formulation::standard ? "_standard" : "_mean_dilatation") +
-             (info.param.dilation > 1.0 ? "_dilated" : "");
-    });
+                      BatchCase{"exponential", Formulation::standard, 1.5},
+                      BatchCase{"mooney_rivlin5", Formulation::mean_dilatation, 1.0, true},
+                      BatchCase{"exponential", Formulation::standard, 1.5, true}),
+    batch_case_name);
+
+// A sample's elements are packed into batches of their own, kept while the same elements are
+// weighted: another sample in between is packed anew, and the first one's force is then the
+// same bits as before.
+TEST(SolidModel, AnotherSampleIsPackedAnew) {
+  const Mesh mesh = distorted_box(5, 4, 3);
+  const SolidModel model(mesh, mooney_rivlin(), Formulation::mean_dilatation, kDensity, {});
+  const Vector u = displacement_field(mesh, deformation);
+  std::vector<double> first(mesh.num_elements(), 0.0), second = first;
+  for (int e = 0; e < mesh.num_elements(); e += 4) first[e] = 1.5;
+  for (int e = 1; e < mesh.num_elements(); e += 5) second[e] = 0.5;
+  auto force = [&](const std::vector<double>& weights) {
+    Vector f = Vector::Zero(model.num_dofs());
+    EXPECT_TRUE(model.add_weighted(u, weights, f, nullptr).ok);
+    return f;
+  };
+  const Vector a = force(first), b = force(second), again = force(first);
+  EXPECT_EQ(a, again);
+  // Elements 0, 4, ... against 1, 6, ...: no shared element, forces far apart.
+  EXPECT_GT((a - b).norm(), 0.1 * a.norm());
+}
 
 // The element loops on 2 threads evaluate elements in parallel but sum them in element order, so
 // force, tangent, energy and the reported smallest det F are the same bits as on 1 thread; with
