@@ -65,8 +65,10 @@ class ReducedIntegrator : public fem::TimeIntegrator {
  private:
   struct Step;
   bool advance(double dt, fem::StepReport& report, int depth);
-  // Phi^T r(u) with the sample's weights; false at an inverted element.
-  bool reduced_force(const fem::Vector& q, fem::Vector& f, fem::SymmetricMatrix* K,
+  // origin + Phi q [m].
+  fem::Vector displacement_of(const fem::Vector& q) const;
+  // Phi^T r(u) with the sample's weights, u the full displacement; false at an inverted element.
+  bool reduced_force(const fem::Vector& u, fem::Vector& f, fem::SymmetricMatrix* K,
                      double* load_norm) const;
   // Phi_f^T A Phi_f for a matrix over the free dofs.
   Eigen::MatrixXd project(const fem::SymmetricMatrix& a) const;
