@@ -105,7 +105,7 @@ Eigen::MatrixXd ReducedIntegrator::project(const fem::SymmetricMatrix& a) const 
 }
 
 void ReducedIntegrator::reconstruct() {
-  // One pass over the basis for the three.
+  // One pass over the basis for the three (at a run's start: steps update them alongside).
   Eigen::MatrixXd coordinates(phi_.cols(), 3), full(phi_.rows(), 3);
   coordinates << q_, qd_, qdd_;
   cblas_dgemm(CblasColMajor, CblasNoTrans, CblasNoTrans, static_cast<int>(phi_.rows()), 3,
@@ -230,7 +230,7 @@ bool ReducedIntegrator::advance(double dt, fem::StepReport& report, int depth) {
   const double tolerance =
       ns.displacement_tolerance > 0.0 ? ns.displacement_tolerance : kDefaultTolerance;
   fem::Vector x = q_ + dt * qd_;  // the constant-velocity predictor, as the full model's
-  // origin + Phi x, kept along with x from the reconstructed state and the corrections' Phi dq,
+  // origin + Phi x, kept along with x from the state's u and v and the corrections' Phi dq,
   // which the error estimate takes anyway: one product with the basis an iteration, not two.
   fem::Vector u = u_ + dt * v_;
   fem::Vector f, r;
@@ -295,12 +295,19 @@ bool ReducedIntegrator::advance(double dt, fem::StepReport& report, int depth) {
   newton.converged = converged;
   report.add(newton);
   if (converged) {
+    // The state's full vectors by the same Newmark update, which is linear: Phi times the
+    // coordinates' update to round-off, without a pass over the basis.
+    const Step full{dt, p.beta, p.gamma, s.c0, s.c1, u_, v_, a_};
+    fem::Vector full_a = full.acceleration(u);
+    fem::Vector full_v = full.velocity(full_a);
+    u_ = std::move(u);
+    v_ = std::move(full_v);
+    a_ = std::move(full_a);
     const fem::Vector a = s.acceleration(x);
     qd_ = s.velocity(a);
     qdd_ = a;
     q_ = x;
     t_ += dt;
-    reconstruct();
     ++report.substeps;
     return true;
   }
