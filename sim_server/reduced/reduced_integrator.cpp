@@ -345,9 +345,9 @@ double ReducedIntegrator::full_model_correction() {
   }
   fem::Vector r;
   if (!system_.residual(u_, 1.0, r, nullptr).ok) return std::numeric_limits<double>::infinity();
-  const fem::Vector v = phi_free_ * qd_;
+  const fem::Vector v = dofs.gather_free(v_);
   fem::Vector dynamic =
-      dofs.gather_free(r) + mass_.multiply(phi_free_ * qdd_ + d.mass_coefficient * v);
+      dofs.gather_free(r) + mass_.multiply(dofs.gather_free(a_) + d.mass_coefficient * v);
   if (d.stiffness_coefficient != 0.0) dynamic += d.stiffness_coefficient * stiffness0_->multiply(v);
   const double correction = check_solver_->solve(dynamic).lpNorm<Eigen::Infinity>();
   // Never NaN: a state the full model cannot judge is as untrusted as it gets.
