@@ -118,6 +118,8 @@ Obstacle::Obstacle(std::string name, TriangleSurface surface)
   closed_ = true;
   edge_normal_.resize(nt);
   rim_edge_.assign(nt, {false, false, false});
+  neighbour_.assign(nt, {-1, -1, -1});
+  concave_fold_.assign(nt, {0.0, 0.0, 0.0});
   rim_vertex_.assign(nv, false);
   for (const auto& [edge, uses] : edges) {
     const std::string edge_name = "the edge between vertices " + std::to_string(edge.first) +
@@ -137,11 +139,25 @@ Obstacle::Obstacle(std::string name, TriangleSurface surface)
       edge_normal_[u.triangle][u.opposite] = n.normalized();
       rim_edge_[u.triangle][u.opposite] = uses.size() == 1;
     }
+    if (uses.size() == 2) {
+      const EdgeUse &a = uses[0], &b = uses[1];
+      neighbour_[a.triangle][a.opposite] = b.triangle;
+      neighbour_[b.triangle][b.opposite] = a.triangle;
+      const Vec3 &na = face_normal_[a.triangle], &nb = face_normal_[b.triangle];
+      if (na.dot(V[T[b.triangle][b.opposite]] - V[edge.first]) > 0.0) {
+        const double angle = std::atan2(na.cross(nb).norm(), na.dot(nb));
+        concave_fold_[a.triangle][a.opposite] = concave_fold_[b.triangle][b.opposite] = angle;
+      }
+    }
     if (uses.size() == 1) {
       closed_ = false;
       rim_vertex_[edge.first] = rim_vertex_[edge.second] = true;
     }
   }
+
+  vertex_triangles_.assign(nv, {});
+  for (int t = 0; t < nt; ++t)
+    for (int k : T[t]) vertex_triangles_[k].push_back(t);
 
   // Vertex pseudo-normals: incident face normals weighted by the incident angles.
   vertex_normal_.assign(nv, Vec3::Zero());
@@ -192,6 +208,8 @@ SurfacePoint Obstacle::closest(const Vec3& x) const {
   SurfacePoint s;
   s.triangle = t;
   s.point = on.point;
+  if (on.feature == TrianglePoint::Feature::edge) s.edge = on.index;
+  if (on.feature == TrianglePoint::Feature::vertex) s.vertex = tri[on.index];
   const Vec3 offset = x - on.point;
   if (on.feature == TrianglePoint::Feature::face) {
     // Inside the triangle x - point is along the normal, which is constant there.
@@ -216,6 +234,76 @@ SurfacePoint Obstacle::closest(const Vec3& x) const {
     s.curvature -= along * along.transpose();
   }
   return s;
+}
+
+FoldFacets Obstacle::fold_facets(const Vec3& x, const SurfacePoint& s, double min_fold) const {
+  FoldFacets f;
+  const auto add = [&](int t) {
+    if (std::find(f.facets.begin(), f.facets.end(), t) == f.facets.end()) f.facets.push_back(t);
+  };
+  const auto sharp = [&](int t, int k) { return concave_fold_[t][k] >= min_fold; };
+  // The facets across the sharp folds of t's edges.
+  const auto add_across = [&](int t) {
+    for (int k = 0; k < 3; ++k)
+      if (sharp(t, k)) add(neighbour_[t][k]);
+  };
+  const int t = s.triangle;
+  if (s.vertex >= 0) {
+    const std::vector<int>& fan = vertex_triangles_[s.vertex];
+    // The edge of a that b lies across, -1 if none (it then holds the vertex: two triangles
+    // that shared an edge and a third vertex would be one).
+    const auto shared_edge = [&](int a, int b) {
+      for (int m = 0; m < 3; ++m)
+        if (neighbour_[a][m] == b) return m;
+      return -1;
+    };
+    bool folded = false;
+    for (int a : fan)
+      for (int b : fan) {
+        const int k = a < b ? shared_edge(a, b) : -1;
+        folded = folded || (k >= 0 && sharp(a, k));
+      }
+    if (!folded) {
+      for (int a : fan) add_across(a);
+      return f;
+    }
+    // The pieces of the fan joined by mild edges, and of each the facet x lies deepest behind.
+    f.keep_closest = false;
+    std::vector<int> piece(fan.size(), -1);
+    for (std::size_t start = 0; start < fan.size(); ++start) {
+      if (piece[start] >= 0) continue;
+      piece[start] = static_cast<int>(start);
+      int deepest = fan[start];
+      for (bool grew = true; grew;) {
+        grew = false;
+        for (std::size_t a = 0; a < fan.size(); ++a) {
+          if (piece[a] != static_cast<int>(start)) continue;
+          for (std::size_t b = 0; b < fan.size(); ++b) {
+            if (piece[b] >= 0) continue;
+            const int k = shared_edge(fan[a], fan[b]);
+            if (k < 0 || sharp(fan[a], k)) continue;
+            piece[b] = static_cast<int>(start);
+            grew = true;
+            if (plane_distance(fan[b], x) < plane_distance(deepest, x)) deepest = fan[b];
+          }
+        }
+      }
+      add(deepest);
+    }
+    return f;
+  }
+  if (s.edge >= 0 && sharp(t, s.edge)) {
+    const int n = neighbour_[t][s.edge];
+    f.keep_closest = false;
+    add(t);
+    add(n);
+    add_across(t);
+    add_across(n);
+    return f;
+  }
+  add_across(t);
+  if (s.edge >= 0 && neighbour_[t][s.edge] >= 0) add_across(neighbour_[t][s.edge]);
+  return f;
 }
 
 }  // namespace tongue::fem

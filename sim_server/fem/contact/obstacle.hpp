@@ -36,6 +36,15 @@ struct SurfacePoint {
   // Hessian of phi^2 / 2 is n n^T + this.
   Mat3 curvature = Mat3::Zero();
   int triangle = -1;  // the triangle that holds the closest point
+  int edge = -1;      // on an edge of it: the edge, opposite its vertex edge (0, 1, 2)
+  int vertex = -1;    // at a vertex: the vertex (an index into the surface's vertices)
+};
+
+// The planes a point behind the surface holds where the surface folds concavely, seen from its
+// free side (Obstacle::fold_facets).
+struct FoldFacets {
+  bool keep_closest = true;  // the closest point's own penetration and normal still count
+  std::vector<int> facets;   // triangles whose planes count too, each once
 };
 
 class Obstacle {
@@ -61,6 +70,30 @@ class Obstacle {
 
   SurfacePoint closest(const Vec3& x) const;
 
+  // A point x behind the surface near a concave fold (two facets whose normals turn towards each
+  // other, seen from the free side, by at least min_fold [rad]) lies behind both facets' planes:
+  // the free side there is the intersection of their half-spaces. Its closest point is then on
+  // the fold's edge or vertex and its normal swings round the fold's angle within a distance
+  // of the penetration's order, less than one Newton step; the planes' normals do not move. So
+  // for the closest point s of x:
+  //  - inside a facet: s counts, and so does each facet across a sharp fold of its edges;
+  //  - on the edge of a sharp fold: the two facets' planes instead of s, and the facets across
+  //    the sharp folds of either;
+  //  - at a vertex with a sharp fold among its edges: the vertex's facets instead of s, grouped
+  //    into pieces joined by the milder edges, of each piece the facet whose plane x lies
+  //    deepest behind (facets joined by a mild edge are about one plane: both would count the
+  //    same penetration twice);
+  //  - elsewhere (on a mild edge or vertex): s, and the facets across sharp folds of the edge's
+  //    or vertex's facets.
+  // The sum of the planes' penalties is then smooth wherever the set holds, and a plane enters
+  // the sum at penetration 0, where its penalty's force and stiffness are 0.
+  FoldFacets fold_facets(const Vec3& x, const SurfacePoint& s, double min_fold) const;
+  // The signed distance of x to triangle t's plane [m] (negative behind it) and its normal.
+  double plane_distance(int t, const Vec3& x) const {
+    return face_normal_[t].dot(x - surface_.vertices[surface_.triangles[t][0]]);
+  }
+  const Vec3& face_normal(int t) const { return face_normal_[t]; }
+
  private:
   struct Index;  // the CGAL tree, kept out of this header
   std::string name_;
@@ -71,6 +104,12 @@ class Obstacle {
   std::vector<Vec3> face_normal_;
   std::vector<std::array<Vec3, 3>> edge_normal_;  // [triangle][edge opposite vertex k]
   std::vector<std::array<bool, 3>> rim_edge_;     // edge of one triangle only
+  std::vector<std::array<int, 3>> neighbour_;     // the triangle across each edge, -1 on the rim
+  // The angle between the normals of the two triangles at each edge [rad] where the surface
+  // folds concavely there seen from its free side (each one's far vertex in front of the
+  // other's plane), 0 where it folds convexly or ends.
+  std::vector<std::array<double, 3>> concave_fold_;
+  std::vector<std::vector<int>> vertex_triangles_;  // the triangles around each vertex
   std::vector<Vec3> vertex_normal_;
   std::vector<bool> rim_vertex_;
   std::unique_ptr<Index> index_;

@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <numbers>
 #include <random>
 
 #include "fem/integrator/newmark_integrator.hpp"
@@ -63,6 +64,114 @@ TEST(RigidContact, TangentIsTheDerivativeOfTheForce) {
   const double scale =
       *std::max_element(contact.node_penalty().begin(), contact.node_penalty().end());
   EXPECT_LT(worst, 1e-8 * scale);
+}
+
+// Nodes pressed into a concave crease (facets 40 degrees apart, the palate's fold round the
+// tongue's tip): behind the crease's edge and behind a vertex on it a node holds both facets'
+// planes, inside a facet near the crease the facet and the plane across it, away from the
+// crease (behind a mild fold of 3 degrees) its closest point. The force is minus the gradient
+// of the energy and the tangent its derivative, by central differences, in every case.
+TEST(RigidContact, FoldPlanesAreConsistentWithTheirEnergy) {
+  const double half = 20.0 * std::numbers::pi / 180.0, bend = 10.0;  // 1/m: 3 degrees a column
+  const auto sheet = obstacle("fold", test::folded_sheet(half, bend, 0.01, 4));
+  const Mesh mesh = make_box(Vec3(-0.004, -0.004, 0.003), Vec3(0.008, 0.008, 0.008), 1, 1, 1);
+  const auto solid = make_solid(mesh);
+  const RigidContact contact({sheet}, mesh, solid->dofs());
+  // The crease's height at x (straight between its vertices, 5 mm apart) and a facet's normal.
+  const auto crease = [&](double x) {
+    const double a = std::floor(x / 0.005) * 0.005, b = a + 0.005;
+    return Vec3(x, 0.0, bend * (a * a + (x - a) / 0.005 * (b * b - a * a)) / 2.0);
+  };
+  const Vec3 n_right(0.0, -std::sin(half), std::cos(half));
+  const Vec3 along_right(0.0, std::cos(half), std::sin(half));
+  const std::vector<Vec3> targets = {
+      crease(0.0013) - Vec3(0, 0, 4e-5),  // behind the crease's edge
+      // Behind a vertex on it: between the planes normal to its two edges there, which rise
+      // at slopes 0.025 and 0.075 (the bend).
+      crease(0.005) + 1.2e-5 * Vec3(0.05, 0.0, -1.0),
+      crease(-0.0021) + 1.5e-5 * along_right - 4.5e-5 * n_right,  // in a facet, near it
+      crease(0.0) + 0.005 * along_right - 3e-5 * n_right,         // behind a mild fold
+  };
+  Vector u = Vector::Zero(solid->num_dofs());  // nodes 4 to 7 stay clear of the sheet
+  for (int k = 0; k < static_cast<int>(targets.size()); ++k)
+    u.segment<3>(3 * k) = targets[k] - mesh.nodes[k];
+
+  const double fold = contact.settings().fold_angle * std::numbers::pi / 180.0;
+  const SurfacePoint edge = sheet->closest(targets[0]), vertex = sheet->closest(targets[1]),
+                     face = sheet->closest(targets[2]), mild = sheet->closest(targets[3]);
+  ASSERT_TRUE(edge.edge >= 0 && vertex.vertex >= 0 && face.edge < 0 && face.vertex < 0);
+  EXPECT_FALSE(sheet->fold_facets(targets[0], edge, fold).keep_closest);
+  EXPECT_EQ(sheet->fold_facets(targets[0], edge, fold).facets.size(), 2u);
+  EXPECT_FALSE(sheet->fold_facets(targets[1], vertex, fold).keep_closest);
+  EXPECT_EQ(sheet->fold_facets(targets[1], vertex, fold).facets.size(), 2u);  // one a side
+  const FoldFacets near = sheet->fold_facets(targets[2], face, fold);
+  ASSERT_TRUE(near.keep_closest && near.facets.size() == 1u);
+  EXPECT_LT(sheet->plane_distance(near.facets[0], targets[2]), 0.0);  // behind the other plane
+  EXPECT_TRUE(sheet->fold_facets(targets[3], mild, fold).keep_closest);
+  EXPECT_TRUE(mild.edge >= 0 || mild.vertex >= 0);  // its normal swings round the mild fold
+
+  SymmetricMatrix K(solid->pattern());
+  Vector f = Vector::Zero(u.size());
+  contact.add(u, 1.0, f, &K);
+  ASSERT_EQ(contact.report(u).contacts.size(), targets.size());
+  // Pressed straight into the crease, a node is pushed straight out of it.
+  EXPECT_NEAR(f[1], 0.0, 1e-9 * f.segment<3>(0).norm());
+  const Eigen::MatrixXd dense = K.to_dense();
+  // The closest point's normal behind the mild fold turns over the node's 30 um depth: the
+  // differences' truncation is ~eps (h / phi)^2, 1e-9 eps at h = 1 nm; round-off ~1e-16 N / h.
+  const double h = 1e-9;
+  double worst = 0.0, worst_force = 0.0;
+  for (int j = 0; j < u.size(); ++j) {
+    Vector up = u, um = u, fp = Vector::Zero(u.size()), fm = Vector::Zero(u.size());
+    up[j] += h;
+    um[j] -= h;
+    contact.add(up, 1.0, fp, nullptr);
+    contact.add(um, 1.0, fm, nullptr);
+    worst = std::max(worst, (-(fp - fm) / (2.0 * h) - dense.col(j)).cwiseAbs().maxCoeff());
+    const double gradient = (contact.report(up).energy - contact.report(um).energy) / (2.0 * h);
+    worst_force = std::max(worst_force, std::abs(f[j] + gradient));
+  }
+  const double scale =
+      *std::max_element(contact.node_penalty().begin(), contact.node_penalty().end());
+  EXPECT_LT(worst, 1e-8 * scale);
+  // Forces ~eps 1e-5 m; the energy's central difference errs by h^2 psi''' / 6 = h^2 eps /
+  // (6 w) ~ 1e-12 eps in the smooth start, its round-off by 1e-16 eps p^3 / w / h, less.
+  EXPECT_LT(worst_force, 1e-11 * scale);
+}
+
+// Without fold planes (fold_angle 180) a node behind the crease holds its closest point, whose
+// normal swings round the fold; with them, the two facets' planes. The depth reported is the
+// distance to the closest point either way.
+TEST(RigidContact, WithoutFoldPlanesTheCreaseHoldsTheClosestPoint) {
+  const double half = 20.0 * std::numbers::pi / 180.0;
+  const auto sheet = obstacle("fold", test::folded_sheet(half, 0.0, 0.01, 4));
+  const Mesh mesh = make_box(Vec3(-0.004, -0.004, 0.003), Vec3(0.008, 0.008, 0.008), 1, 1, 1);
+  const auto solid = make_solid(mesh);
+  ContactSettings off;
+  off.fold_angle = 180.0;
+  const RigidContact with({sheet}, mesh, solid->dofs());
+  const RigidContact without({sheet}, mesh, solid->dofs(), off);
+  Vector u = Vector::Zero(solid->num_dofs());
+  const Vec3 target(0.0013, 1e-5, -4e-5);
+  u.segment<3>(0) = target - mesh.nodes[0];
+  const double depth = sheet->closest(target).distance;
+  ASSERT_LT(depth, 0.0);
+  EXPECT_EQ(with.report(u).max_penetration, -depth);
+  EXPECT_EQ(without.report(u).max_penetration, -depth);
+  Vector f_with = Vector::Zero(u.size()), f_without = Vector::Zero(u.size());
+  with.add(u, 1.0, f_with, nullptr);
+  without.add(u, 1.0, f_without, nullptr);
+  const double eps = with.node_penalty()[0], w = with.settings().smoothing;
+  const auto psi_force = [&](double p) {
+    return p <= w ? eps * p * p / (2.0 * w) : eps * (p - w / 2.0);
+  };
+  EXPECT_NEAR(f_without.segment<3>(0).norm(), psi_force(-depth), 1e-9 * psi_force(-depth));
+  const FoldFacets fold = sheet->fold_facets(target, sheet->closest(target), half);
+  ASSERT_EQ(fold.facets.size(), 2u);
+  Vec3 planes = Vec3::Zero();
+  for (const int t : fold.facets)
+    planes += psi_force(-sheet->plane_distance(t, target)) * sheet->face_normal(t);
+  EXPECT_NEAR((f_with.segment<3>(0) - planes).norm(), 0.0, 1e-9 * planes.norm());
 }
 
 // The penetration under a contact pressure P: psi'(p) = eps p^2 / (2 w) up to p = w, then
