@@ -43,7 +43,7 @@ struct TrianglePoint {
   enum class Feature { face, edge, vertex };
   Feature feature = Feature::face;
   int index = 0;  // the vertex (0, 1, 2), or the edge opposite vertex index
-  Vec3 point;
+  Vec3 point = Vec3::Zero();
 };
 
 TrianglePoint closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -236,74 +236,131 @@ SurfacePoint Obstacle::closest(const Vec3& x) const {
   return s;
 }
 
-FoldFacets Obstacle::fold_facets(const Vec3& x, const SurfacePoint& s, double min_fold) const {
-  FoldFacets f;
-  const auto add = [&](int t) {
-    if (std::find(f.facets.begin(), f.facets.end(), t) == f.facets.end()) f.facets.push_back(t);
-  };
+void Obstacle::fold_points(const Vec3& x, const SurfacePoint& s, double min_fold,
+                           std::vector<SurfacePoint>& points) const {
+  points.clear();
+  const auto& T = surface_.triangles;
+  const auto& V = surface_.vertices;
   const auto sharp = [&](int t, int k) { return concave_fold_[t][k] >= min_fold; };
-  // The facets across the sharp folds of t's edges.
-  const auto add_across = [&](int t) {
-    for (int k = 0; k < 3; ++k)
-      if (sharp(t, k)) add(neighbour_[t][k]);
+  // The triangles within two rings of vertices of s's triangle: wider than any penetration the
+  // penalty allows, so that a side of a fold enters or leaves it in front of its planes.
+  std::vector<int> near{s.triangle};
+  for (int ring = 0; ring < 2; ++ring) {
+    std::vector<int> grown = near;
+    for (int t : near)
+      for (int v : T[t])
+        grown.insert(grown.end(), vertex_triangles_[v].begin(), vertex_triangles_[v].end());
+    std::sort(grown.begin(), grown.end());
+    grown.erase(std::unique(grown.begin(), grown.end()), grown.end());
+    near = std::move(grown);
+  }
+  const auto is_near = [&](int t) { return std::binary_search(near.begin(), near.end(), t); };
+  bool folded = false;
+  for (int t : near)
+    for (int k = 0; k < 3; ++k) folded = folded || (sharp(t, k) && is_near(neighbour_[t][k]));
+  if (!folded) {
+    points.push_back(s);
+    return;
+  }
+  // The sides: the near triangles joined across edges that do not fold sharply.
+  std::vector<int> side(near.size(), -1);
+  const auto index = [&](int t) {
+    return static_cast<int>(std::lower_bound(near.begin(), near.end(), t) - near.begin());
   };
-  const int t = s.triangle;
-  if (s.vertex >= 0) {
-    const std::vector<int>& fan = vertex_triangles_[s.vertex];
-    // The edge of a that b lies across, -1 if none (it then holds the vertex: two triangles
-    // that shared an edge and a third vertex would be one).
-    const auto shared_edge = [&](int a, int b) {
-      for (int m = 0; m < 3; ++m)
-        if (neighbour_[a][m] == b) return m;
-      return -1;
-    };
-    bool folded = false;
-    for (int a : fan)
-      for (int b : fan) {
-        const int k = a < b ? shared_edge(a, b) : -1;
-        folded = folded || (k >= 0 && sharp(a, k));
+  int sides = 0;
+  for (std::size_t first = 0; first < near.size(); ++first) {
+    if (side[first] >= 0) continue;
+    std::vector<int> stack{static_cast<int>(first)};
+    side[first] = sides;
+    while (!stack.empty()) {
+      const int a = near[stack.back()];
+      stack.pop_back();
+      for (int k = 0; k < 3; ++k) {
+        const int b = neighbour_[a][k];
+        if (b < 0 || sharp(a, k) || !is_near(b) || side[index(b)] >= 0) continue;
+        side[index(b)] = sides;
+        stack.push_back(index(b));
       }
-    if (!folded) {
-      for (int a : fan) add_across(a);
-      return f;
     }
-    // The pieces of the fan joined by mild edges, and of each the facet x lies deepest behind.
-    f.keep_closest = false;
-    std::vector<int> piece(fan.size(), -1);
-    for (std::size_t start = 0; start < fan.size(); ++start) {
-      if (piece[start] >= 0) continue;
-      piece[start] = static_cast<int>(start);
-      int deepest = fan[start];
-      for (bool grew = true; grew;) {
-        grew = false;
-        for (std::size_t a = 0; a < fan.size(); ++a) {
-          if (piece[a] != static_cast<int>(start)) continue;
-          for (std::size_t b = 0; b < fan.size(); ++b) {
-            if (piece[b] >= 0) continue;
-            const int k = shared_edge(fan[a], fan[b]);
-            if (k < 0 || sharp(fan[a], k)) continue;
-            piece[b] = static_cast<int>(start);
-            grew = true;
-            if (plane_distance(fan[b], x) < plane_distance(deepest, x)) deepest = fan[b];
+    ++sides;
+  }
+  // Each side's closest point to x, as closest() finds it on the whole surface, but that where
+  // it lies on the side's sharp fold (an edge, or a vertex such an edge ends at) the side goes on
+  // past the fold in the plane of its facet there.
+  for (int c = 0; c < sides; ++c) {
+    int t = -1;
+    TrianglePoint on;
+    double best = std::numeric_limits<double>::infinity();
+    for (std::size_t i = 0; i < near.size(); ++i) {
+      if (side[i] != c) continue;
+      const auto& tri = T[near[i]];
+      const TrianglePoint p = closest_on_triangle(x, V[tri[0]], V[tri[1]], V[tri[2]]);
+      const double d = (x - p.point).squaredNorm();
+      if (d < best) {
+        best = d;
+        t = near[i];
+        on = p;
+      }
+    }
+    const auto in_side = [&](int b) { return b >= 0 && is_near(b) && side[index(b)] == c; };
+    int plane = -1;  // the facet whose plane the side goes on in, if it does
+    SurfacePoint p;
+    p.triangle = t;
+    p.point = on.point;
+    if (on.feature == TrianglePoint::Feature::edge) {
+      p.edge = on.index;
+      const int b = neighbour_[t][on.index];
+      if (b < 0) continue;  // beyond the rim of the sheet
+      if (!in_side(b)) {
+        if (!sharp(t, on.index)) continue;  // beyond the near triangles: too far to count
+        plane = t;
+      }
+    } else if (on.feature == TrianglePoint::Feature::vertex) {
+      const int v = T[t][on.index];
+      p.vertex = v;
+      if (rim_vertex_[v] && !closed_) continue;
+      // Past the ends of all the side's edges at v: the fold's edge x is least far past.
+      double along_best = -std::numeric_limits<double>::infinity();
+      bool whole = true;  // all of v's triangles on this side
+      for (int a : vertex_triangles_[v]) {
+        if (!in_side(a)) {
+          whole = false;
+          continue;
+        }
+        for (int k = 0; k < 3; ++k) {
+          if (T[a][k] == v || in_side(neighbour_[a][k]) || !sharp(a, k)) continue;
+          const int w = T[a][(k + 1) % 3] == v ? T[a][(k + 2) % 3] : T[a][(k + 1) % 3];
+          const double along = (x - V[v]).dot((V[w] - V[v]).normalized());
+          if (along > along_best) {
+            along_best = along;
+            plane = a;
           }
         }
       }
-      add(deepest);
+      if (!whole && plane < 0) continue;  // the side ends at v elsewhere than at a fold
     }
-    return f;
+    if (on.feature == TrianglePoint::Feature::face || plane >= 0) {
+      const int f = plane >= 0 ? plane : t;
+      p.valid = true;
+      p.normal = face_normal_[f];
+      p.distance = plane_distance(f, x);
+    } else {  // on an edge or vertex inside the side: as closest() does
+      p.valid = true;
+      const bool edge = on.feature == TrianglePoint::Feature::edge;
+      const Vec3& pseudo = edge ? edge_normal_[t][on.index] : vertex_normal_[T[t][on.index]];
+      const Vec3 offset = x - on.point;
+      const double d = offset.norm();
+      const double sign = offset.dot(pseudo) < 0.0 ? -1.0 : 1.0;
+      p.distance = sign * d;
+      p.normal = d > on_surface_ ? (sign / d) * offset : pseudo;
+      p.curvature = Mat3::Identity() - p.normal * p.normal.transpose();
+      if (edge) {
+        const Vec3 along = (V[T[t][(on.index + 2) % 3]] - V[T[t][(on.index + 1) % 3]]).normalized();
+        p.curvature -= along * along.transpose();
+      }
+    }
+    points.push_back(p);
   }
-  if (s.edge >= 0 && sharp(t, s.edge)) {
-    const int n = neighbour_[t][s.edge];
-    f.keep_closest = false;
-    add(t);
-    add(n);
-    add_across(t);
-    add_across(n);
-    return f;
-  }
-  add_across(t);
-  if (s.edge >= 0 && neighbour_[t][s.edge] >= 0) add_across(neighbour_[t][s.edge]);
-  return f;
 }
 
 }  // namespace tongue::fem

@@ -40,13 +40,6 @@ struct SurfacePoint {
   int vertex = -1;    // at a vertex: the vertex (an index into the surface's vertices)
 };
 
-// The planes a point behind the surface holds where the surface folds concavely, seen from its
-// free side (Obstacle::fold_facets).
-struct FoldFacets {
-  bool keep_closest = true;  // the closest point's own penetration and normal still count
-  std::vector<int> facets;   // triangles whose planes count too, each once
-};
-
 class Obstacle {
  public:
   // Checks the surface and builds its spatial index. Throws std::invalid_argument when it has no
@@ -70,24 +63,19 @@ class Obstacle {
 
   SurfacePoint closest(const Vec3& x) const;
 
-  // A point x behind the surface near a concave fold (two facets whose normals turn towards each
-  // other, seen from the free side, by at least min_fold [rad]) lies behind both facets' planes:
-  // the free side there is the intersection of their half-spaces. Its closest point is then on
-  // the fold's edge or vertex and its normal swings round the fold's angle within a distance
-  // of the penetration's order, less than one Newton step; the planes' normals do not move. So
-  // for the closest point s of x:
-  //  - inside a facet: s counts, and so does each facet across a sharp fold of its edges;
-  //  - on the edge of a sharp fold: the two facets' planes instead of s, and the facets across
-  //    the sharp folds of either;
-  //  - at a vertex with a sharp fold among its edges: the vertex's facets instead of s, grouped
-  //    into pieces joined by the milder edges, of each piece the facet whose plane x lies
-  //    deepest behind (facets joined by a mild edge are about one plane: both would count the
-  //    same penetration twice);
-  //  - elsewhere (on a mild edge or vertex): s, and the facets across sharp folds of the edge's
-  //    or vertex's facets.
-  // The sum of the planes' penalties is then smooth wherever the set holds, and a plane enters
-  // the sum at penetration 0, where its penalty's force and stiffness are 0.
-  FoldFacets fold_facets(const Vec3& x, const SurfacePoint& s, double min_fold) const;
+  // Where the surface folds concavely seen from its free side, by at least min_fold [rad] (the
+  // angle between the two facets' normals), a point x behind it lies behind both sides of the
+  // fold, the free side there being the intersection of theirs. Its closest point is then on
+  // the fold's edge or vertex, and its normal swings round the fold's angle as x moves by less
+  // than its depth. So the surface near s (x's closest point, behind it) is cut at its sharp
+  // concave folds into sides, and x holds each side on its own: the side's closest point, found
+  // as closest() does, except that where it lies on the side's fold the side goes on past it in
+  // the plane of its facet there (at a vertex of the fold, of the fold's edge there that x is
+  // least far past). Replaces points with a point per side (distance, normal and curvature; a
+  // plane's curvature is zero), or with s alone where nothing near s folds that sharply.
+  // A side with x in front of it counts nothing (the caller keeps the points behind).
+  void fold_points(const Vec3& x, const SurfacePoint& s, double min_fold,
+                   std::vector<SurfacePoint>& points) const;
   // The signed distance of x to triangle t's plane [m] (negative behind it) and its normal.
   double plane_distance(int t, const Vec3& x) const {
     return face_normal_[t].dot(x - surface_.vertices[surface_.triangles[t][0]]);

@@ -87,14 +87,11 @@ void RigidContact::node_springs(int o, const Vec3& x, const SurfacePoint& s,
                                 std::vector<Spring>& springs) const {
   springs.clear();
   const Obstacle& obstacle = *obstacles_[o];
-  const FoldFacets fold =
-      obstacle.fold_facets(x, s, settings_.fold_angle * std::numbers::pi / 180.0);
-  if (fold.keep_closest) springs.push_back({-s.distance, s.normal, s.curvature});
-  for (int t : fold.facets) {
-    const double phi = obstacle.plane_distance(t, x);
-    if (phi < 0.0 && phi > -settings_.search_depth)
-      springs.push_back({-phi, obstacle.face_normal(t), Mat3::Zero()});
-  }
+  std::vector<SurfacePoint> sides;
+  obstacle.fold_points(x, s, settings_.fold_angle * std::numbers::pi / 180.0, sides);
+  for (const SurfacePoint& side : sides)
+    if (side.distance < 0.0 && side.distance > -settings_.search_depth)
+      springs.push_back({-side.distance, side.normal, side.curvature});
 }
 
 void RigidContact::add(const Vector& u, double /*load_factor*/, Vector& force,

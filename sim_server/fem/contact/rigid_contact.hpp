@@ -17,12 +17,12 @@
 // obstacles gets the sum.
 //
 // A node behind a concave fold of an obstacle (two facets turning towards the solid by at least
-// fold_angle) holds a plane per facet of the fold instead (Obstacle::fold_facets): the energy
-// is the sum of psi over the planes it lies behind, p_f = -n_f . (x - a_f), whose force and
-// tangent, sum psi'(p_f) n_f and sum psi''(p_f) n_f n_f^T, have fixed directions: springs that
-// a reused factor's corrections carry exactly (docs/contact.md). Behind the fold's edge the
-// closest point's normal would swing round the fold's angle within micrometres, and its
-// curvature term, as stiff as the spring itself there, is no spring the corrections know.
+// fold_angle) holds each side of the fold on its own, a side going on past the fold in the plane
+// of its facet there (Obstacle::fold_points): the energy is the sum of psi over the sides it
+// lies behind. Behind the fold's edge the closest point's normal would swing round the fold's
+// angle within micrometres, and its curvature term, as stiff as the spring itself there, is no
+// spring a reused factor's corrections know; the planes' springs have fixed directions, which
+// the corrections carry exactly (docs/contact.md).
 //
 // The force does not scale with a load factor: contact is part of the solid, not a load.
 #include <memory>
@@ -113,7 +113,7 @@ class RigidContact : public ForceContribution {
     Mat3 curvature;
   };
   // Replaces `springs` with those of a node at x whose closest point on obstacle o is s (behind
-  // it): s's own, or a plane per facet of the fold it lies behind, or both (fold_facets).
+  // it): s's own, or one for each side of a fold it lies behind (fold_points).
   void node_springs(int o, const Vec3& x, const SurfacePoint& s,
                     std::vector<Spring>& springs) const;
   // Calls visit(candidate index, obstacle index, surface point, springs) for every contact at u.

@@ -67,7 +67,7 @@ TEST(RigidContact, TangentIsTheDerivativeOfTheForce) {
 }
 
 // Nodes pressed into a concave crease (facets 40 degrees apart, the palate's fold round the
-// tongue's tip): behind the crease's edge and behind a vertex on it a node holds both facets'
+// tongue's tip): behind the crease's edge and behind a vertex on it a node holds both sides'
 // planes, inside a facet near the crease the facet and the plane across it, away from the
 // crease (behind a mild fold of 3 degrees) its closest point. The force is minus the gradient
 // of the energy and the tangent its derivative, by central differences, in every case.
@@ -87,8 +87,9 @@ TEST(RigidContact, FoldPlanesAreConsistentWithTheirEnergy) {
   const std::vector<Vec3> targets = {
       crease(0.0013) - Vec3(0, 0, 4e-5),  // behind the crease's edge
       // Behind a vertex on it: between the planes normal to its two edges there, which rise
-      // at slopes 0.025 and 0.075 (the bend).
-      crease(0.005) + 1.2e-5 * Vec3(0.05, 0.0, -1.0),
+      // at slopes 0.025 and 0.075 (the bend), nearer the first (the side's plane switches from
+      // one edge's facet to the other's half way, by the bend's 3 degrees).
+      crease(0.005) + 1.2e-5 * Vec3(0.035, 0.0, -1.0),
       crease(-0.0021) + 1.5e-5 * along_right - 4.5e-5 * n_right,  // in a facet, near it
       crease(0.0) + 0.005 * along_right - 3e-5 * n_right,         // behind a mild fold
   };
@@ -100,15 +101,35 @@ TEST(RigidContact, FoldPlanesAreConsistentWithTheirEnergy) {
   const SurfacePoint edge = sheet->closest(targets[0]), vertex = sheet->closest(targets[1]),
                      face = sheet->closest(targets[2]), mild = sheet->closest(targets[3]);
   ASSERT_TRUE(edge.edge >= 0 && vertex.vertex >= 0 && face.edge < 0 && face.vertex < 0);
-  EXPECT_FALSE(sheet->fold_facets(targets[0], edge, fold).keep_closest);
-  EXPECT_EQ(sheet->fold_facets(targets[0], edge, fold).facets.size(), 2u);
-  EXPECT_FALSE(sheet->fold_facets(targets[1], vertex, fold).keep_closest);
-  EXPECT_EQ(sheet->fold_facets(targets[1], vertex, fold).facets.size(), 2u);  // one a side
-  const FoldFacets near = sheet->fold_facets(targets[2], face, fold);
-  ASSERT_TRUE(near.keep_closest && near.facets.size() == 1u);
-  EXPECT_LT(sheet->plane_distance(near.facets[0], targets[2]), 0.0);  // behind the other plane
-  EXPECT_TRUE(sheet->fold_facets(targets[3], mild, fold).keep_closest);
-  EXPECT_TRUE(mild.edge >= 0 || mild.vertex >= 0);  // its normal swings round the mild fold
+  // The sides' points x lies behind, and how many of them are planes (no curvature).
+  const auto behind = [&](const Vec3& x, const SurfacePoint& s, int& planes) {
+    std::vector<SurfacePoint> sides;
+    sheet->fold_points(x, s, fold, sides);
+    std::vector<SurfacePoint> out;
+    planes = 0;
+    for (const SurfacePoint& p : sides)
+      if (p.valid && p.distance < 0.0) {
+        out.push_back(p);
+        planes += p.curvature.isZero() ? 1 : 0;
+      }
+    return out;
+  };
+  int planes = 0;
+  EXPECT_EQ(behind(targets[0], edge, planes).size(), 2u);  // a plane a side
+  EXPECT_EQ(planes, 2);
+  EXPECT_EQ(behind(targets[1], vertex, planes).size(), 2u);
+  EXPECT_EQ(planes, 2);
+  const std::vector<SurfacePoint> near = behind(targets[2], face, planes);
+  ASSERT_EQ(near.size(), 2u);  // the facet and the plane across the crease
+  EXPECT_EQ(planes, 2);
+  EXPECT_NEAR(std::min(std::abs(near[0].distance - face.distance),
+                       std::abs(near[1].distance - face.distance)),
+              0.0, 1e-15);
+  const std::vector<SurfacePoint> own = behind(targets[3], mild, planes);
+  ASSERT_EQ(own.size(), 1u);  // its side's closest point, whose normal swings round the mild fold
+  EXPECT_EQ(planes, 0);
+  EXPECT_TRUE(mild.edge >= 0 || mild.vertex >= 0);
+  EXPECT_EQ(own[0].distance, mild.distance);
 
   SymmetricMatrix K(solid->pattern());
   Vector f = Vector::Zero(u.size());
@@ -166,11 +187,14 @@ TEST(RigidContact, WithoutFoldPlanesTheCreaseHoldsTheClosestPoint) {
     return p <= w ? eps * p * p / (2.0 * w) : eps * (p - w / 2.0);
   };
   EXPECT_NEAR(f_without.segment<3>(0).norm(), psi_force(-depth), 1e-9 * psi_force(-depth));
-  const FoldFacets fold = sheet->fold_facets(target, sheet->closest(target), half);
-  ASSERT_EQ(fold.facets.size(), 2u);
+  std::vector<SurfacePoint> sides;
+  sheet->fold_points(target, sheet->closest(target), half, sides);
+  ASSERT_EQ(sides.size(), 2u);
   Vec3 planes = Vec3::Zero();
-  for (const int t : fold.facets)
-    planes += psi_force(-sheet->plane_distance(t, target)) * sheet->face_normal(t);
+  for (const SurfacePoint& side : sides) {
+    EXPECT_TRUE(side.curvature.isZero());
+    planes += psi_force(-side.distance) * side.normal;
+  }
   EXPECT_NEAR((f_with.segment<3>(0) - planes).norm(), 0.0, 1e-9 * planes.norm());
 }
 
