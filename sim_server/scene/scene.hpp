@@ -95,8 +95,7 @@
 //         # obstacles; the defaults shown (fem::ContactSettings). penalty [Pa/m]: contact
 //         # pressure per metre of penetration; smoothing [m]: the penetration over which the
 //         # penalty's stiffness grows from 0; search_depth [m]: points deeper behind a surface
-//         # are not in contact with it; fold_angle (20) [degrees]: a node behind a concave fold
-//         # this sharp holds both facets' planes (180: none does)
+//         # are not in contact with it
 //   analysis:                      # required
 //     type: dynamic                # required: static | dynamic
 //     settle: false                # dynamic: start from static equilibrium under the loads

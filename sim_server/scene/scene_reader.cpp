@@ -857,17 +857,13 @@ class Parser : private common::YamlReader {
 
   void read_contact(const YAML::Node& n, const std::string& path, fem::ContactSettings& c) const {
     expect_map(n, path);
-    check_keys(n, path, {"penalty", "smoothing", "search_depth", "fold_angle"});
+    check_keys(n, path, {"penalty", "smoothing", "search_depth"});
     if (const auto v = n["penalty"]; present(v))
       c.penalty = positive(v, child_path(path, "penalty"), "Pa/m");
     if (const auto v = n["smoothing"]; present(v))
       c.smoothing = positive(v, child_path(path, "smoothing"), "m");
     if (const auto v = n["search_depth"]; present(v))
       c.search_depth = positive(v, child_path(path, "search_depth"), "m");
-    if (const auto v = n["fold_angle"]; present(v)) {
-      c.fold_angle = positive(v, child_path(path, "fold_angle"), "degrees");
-      if (c.fold_angle > 180.0) fail(child_path(path, "fold_angle"), "must be at most 180", v);
-    }
   }
 
   void read_model(const YAML::Node& n, const std::string& path, ModelSpec& m) const {

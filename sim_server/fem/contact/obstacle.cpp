@@ -43,7 +43,7 @@ struct TrianglePoint {
   enum class Feature { face, edge, vertex };
   Feature feature = Feature::face;
   int index = 0;  // the vertex (0, 1, 2), or the edge opposite vertex index
-  Vec3 point = Vec3::Zero();
+  Vec3 point;
 };
 
 TrianglePoint closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, const Vec3& c) {
@@ -118,8 +118,6 @@ Obstacle::Obstacle(std::string name, TriangleSurface surface)
   closed_ = true;
   edge_normal_.resize(nt);
   rim_edge_.assign(nt, {false, false, false});
-  neighbour_.assign(nt, {-1, -1, -1});
-  concave_fold_.assign(nt, {0.0, 0.0, 0.0});
   rim_vertex_.assign(nv, false);
   for (const auto& [edge, uses] : edges) {
     const std::string edge_name = "the edge between vertices " + std::to_string(edge.first) +
@@ -139,25 +137,11 @@ Obstacle::Obstacle(std::string name, TriangleSurface surface)
       edge_normal_[u.triangle][u.opposite] = n.normalized();
       rim_edge_[u.triangle][u.opposite] = uses.size() == 1;
     }
-    if (uses.size() == 2) {
-      const EdgeUse &a = uses[0], &b = uses[1];
-      neighbour_[a.triangle][a.opposite] = b.triangle;
-      neighbour_[b.triangle][b.opposite] = a.triangle;
-      const Vec3 &na = face_normal_[a.triangle], &nb = face_normal_[b.triangle];
-      if (na.dot(V[T[b.triangle][b.opposite]] - V[edge.first]) > 0.0) {
-        const double angle = std::atan2(na.cross(nb).norm(), na.dot(nb));
-        concave_fold_[a.triangle][a.opposite] = concave_fold_[b.triangle][b.opposite] = angle;
-      }
-    }
     if (uses.size() == 1) {
       closed_ = false;
       rim_vertex_[edge.first] = rim_vertex_[edge.second] = true;
     }
   }
-
-  vertex_triangles_.assign(nv, {});
-  for (int t = 0; t < nt; ++t)
-    for (int k : T[t]) vertex_triangles_[k].push_back(t);
 
   // Vertex pseudo-normals: incident face normals weighted by the incident angles.
   vertex_normal_.assign(nv, Vec3::Zero());
@@ -208,8 +192,6 @@ SurfacePoint Obstacle::closest(const Vec3& x) const {
   SurfacePoint s;
   s.triangle = t;
   s.point = on.point;
-  if (on.feature == TrianglePoint::Feature::edge) s.edge = on.index;
-  if (on.feature == TrianglePoint::Feature::vertex) s.vertex = tri[on.index];
   const Vec3 offset = x - on.point;
   if (on.feature == TrianglePoint::Feature::face) {
     // Inside the triangle x - point is along the normal, which is constant there.
@@ -234,133 +216,6 @@ SurfacePoint Obstacle::closest(const Vec3& x) const {
     s.curvature -= along * along.transpose();
   }
   return s;
-}
-
-void Obstacle::fold_points(const Vec3& x, const SurfacePoint& s, double min_fold,
-                           std::vector<SurfacePoint>& points) const {
-  points.clear();
-  const auto& T = surface_.triangles;
-  const auto& V = surface_.vertices;
-  const auto sharp = [&](int t, int k) { return concave_fold_[t][k] >= min_fold; };
-  // The triangles within two rings of vertices of s's triangle: wider than any penetration the
-  // penalty allows, so that a side of a fold enters or leaves it in front of its planes.
-  std::vector<int> near{s.triangle};
-  for (int ring = 0; ring < 2; ++ring) {
-    std::vector<int> grown = near;
-    for (int t : near)
-      for (int v : T[t])
-        grown.insert(grown.end(), vertex_triangles_[v].begin(), vertex_triangles_[v].end());
-    std::sort(grown.begin(), grown.end());
-    grown.erase(std::unique(grown.begin(), grown.end()), grown.end());
-    near = std::move(grown);
-  }
-  const auto is_near = [&](int t) { return std::binary_search(near.begin(), near.end(), t); };
-  bool folded = false;
-  for (int t : near)
-    for (int k = 0; k < 3; ++k) folded = folded || (sharp(t, k) && is_near(neighbour_[t][k]));
-  if (!folded) {
-    points.push_back(s);
-    return;
-  }
-  // The sides: the near triangles joined across edges that do not fold sharply.
-  std::vector<int> side(near.size(), -1);
-  const auto index = [&](int t) {
-    return static_cast<int>(std::lower_bound(near.begin(), near.end(), t) - near.begin());
-  };
-  int sides = 0;
-  for (std::size_t first = 0; first < near.size(); ++first) {
-    if (side[first] >= 0) continue;
-    std::vector<int> stack{static_cast<int>(first)};
-    side[first] = sides;
-    while (!stack.empty()) {
-      const int a = near[stack.back()];
-      stack.pop_back();
-      for (int k = 0; k < 3; ++k) {
-        const int b = neighbour_[a][k];
-        if (b < 0 || sharp(a, k) || !is_near(b) || side[index(b)] >= 0) continue;
-        side[index(b)] = sides;
-        stack.push_back(index(b));
-      }
-    }
-    ++sides;
-  }
-  // Each side's closest point to x, as closest() finds it on the whole surface, but that where
-  // it lies on the side's sharp fold (an edge, or a vertex such an edge ends at) the side goes on
-  // past the fold in the plane of its facet there.
-  for (int c = 0; c < sides; ++c) {
-    int t = -1;
-    TrianglePoint on;
-    double best = std::numeric_limits<double>::infinity();
-    for (std::size_t i = 0; i < near.size(); ++i) {
-      if (side[i] != c) continue;
-      const auto& tri = T[near[i]];
-      const TrianglePoint p = closest_on_triangle(x, V[tri[0]], V[tri[1]], V[tri[2]]);
-      const double d = (x - p.point).squaredNorm();
-      if (d < best) {
-        best = d;
-        t = near[i];
-        on = p;
-      }
-    }
-    const auto in_side = [&](int b) { return b >= 0 && is_near(b) && side[index(b)] == c; };
-    int plane = -1;  // the facet whose plane the side goes on in, if it does
-    SurfacePoint p;
-    p.triangle = t;
-    p.point = on.point;
-    if (on.feature == TrianglePoint::Feature::edge) {
-      p.edge = on.index;
-      const int b = neighbour_[t][on.index];
-      if (b < 0) continue;  // beyond the rim of the sheet
-      if (!in_side(b)) {
-        if (!sharp(t, on.index)) continue;  // beyond the near triangles: too far to count
-        plane = t;
-      }
-    } else if (on.feature == TrianglePoint::Feature::vertex) {
-      const int v = T[t][on.index];
-      p.vertex = v;
-      if (rim_vertex_[v] && !closed_) continue;
-      // Past the ends of all the side's edges at v: the fold's edge x is least far past.
-      double along_best = -std::numeric_limits<double>::infinity();
-      bool whole = true;  // all of v's triangles on this side
-      for (int a : vertex_triangles_[v]) {
-        if (!in_side(a)) {
-          whole = false;
-          continue;
-        }
-        for (int k = 0; k < 3; ++k) {
-          if (T[a][k] == v || in_side(neighbour_[a][k]) || !sharp(a, k)) continue;
-          const int w = T[a][(k + 1) % 3] == v ? T[a][(k + 2) % 3] : T[a][(k + 1) % 3];
-          const double along = (x - V[v]).dot((V[w] - V[v]).normalized());
-          if (along > along_best) {
-            along_best = along;
-            plane = a;
-          }
-        }
-      }
-      if (!whole && plane < 0) continue;  // the side ends at v elsewhere than at a fold
-    }
-    if (on.feature == TrianglePoint::Feature::face || plane >= 0) {
-      const int f = plane >= 0 ? plane : t;
-      p.valid = true;
-      p.normal = face_normal_[f];
-      p.distance = plane_distance(f, x);
-    } else {  // on an edge or vertex inside the side: as closest() does
-      p.valid = true;
-      const bool edge = on.feature == TrianglePoint::Feature::edge;
-      const Vec3& pseudo = edge ? edge_normal_[t][on.index] : vertex_normal_[T[t][on.index]];
-      const Vec3 offset = x - on.point;
-      const double d = offset.norm();
-      const double sign = offset.dot(pseudo) < 0.0 ? -1.0 : 1.0;
-      p.distance = sign * d;
-      p.normal = d > on_surface_ ? (sign / d) * offset : pseudo;
-      p.curvature = Mat3::Identity() - p.normal * p.normal.transpose();
-      if (edge) {
-        const Vec3 along = (V[T[t][(on.index + 2) % 3]] - V[T[t][(on.index + 1) % 3]]).normalized();
-        p.curvature -= along * along.transpose();
-      }
-    }
-    points.push_back(p);
-  }
 }
 
 }  // namespace tongue::fem

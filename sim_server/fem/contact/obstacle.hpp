@@ -36,8 +36,6 @@ struct SurfacePoint {
   // Hessian of phi^2 / 2 is n n^T + this.
   Mat3 curvature = Mat3::Zero();
   int triangle = -1;  // the triangle that holds the closest point
-  int edge = -1;      // on an edge of it: the edge, opposite its vertex edge (0, 1, 2)
-  int vertex = -1;    // at a vertex: the vertex (an index into the surface's vertices)
 };
 
 class Obstacle {
@@ -63,25 +61,6 @@ class Obstacle {
 
   SurfacePoint closest(const Vec3& x) const;
 
-  // Where the surface folds concavely seen from its free side, by at least min_fold [rad] (the
-  // angle between the two facets' normals), a point x behind it lies behind both sides of the
-  // fold, the free side there being the intersection of theirs. Its closest point is then on
-  // the fold's edge or vertex, and its normal swings round the fold's angle as x moves by less
-  // than its depth. So the surface near s (x's closest point, behind it) is cut at its sharp
-  // concave folds into sides, and x holds each side on its own: the side's closest point, found
-  // as closest() does, except that where it lies on the side's fold the side goes on past it in
-  // the plane of its facet there (at a vertex of the fold, of the fold's edge there that x is
-  // least far past). Replaces points with a point per side (distance, normal and curvature; a
-  // plane's curvature is zero), or with s alone where nothing near s folds that sharply.
-  // A side with x in front of it counts nothing (the caller keeps the points behind).
-  void fold_points(const Vec3& x, const SurfacePoint& s, double min_fold,
-                   std::vector<SurfacePoint>& points) const;
-  // The signed distance of x to triangle t's plane [m] (negative behind it) and its normal.
-  double plane_distance(int t, const Vec3& x) const {
-    return face_normal_[t].dot(x - surface_.vertices[surface_.triangles[t][0]]);
-  }
-  const Vec3& face_normal(int t) const { return face_normal_[t]; }
-
  private:
   struct Index;  // the CGAL tree, kept out of this header
   std::string name_;
@@ -92,12 +71,6 @@ class Obstacle {
   std::vector<Vec3> face_normal_;
   std::vector<std::array<Vec3, 3>> edge_normal_;  // [triangle][edge opposite vertex k]
   std::vector<std::array<bool, 3>> rim_edge_;     // edge of one triangle only
-  std::vector<std::array<int, 3>> neighbour_;     // the triangle across each edge, -1 on the rim
-  // The angle between the normals of the two triangles at each edge [rad] where the surface
-  // folds concavely there seen from its free side (each one's far vertex in front of the
-  // other's plane), 0 where it folds convexly or ends.
-  std::vector<std::array<double, 3>> concave_fold_;
-  std::vector<std::vector<int>> vertex_triangles_;  // the triangles around each vertex
   std::vector<Vec3> vertex_normal_;
   std::vector<bool> rim_vertex_;
   std::unique_ptr<Index> index_;

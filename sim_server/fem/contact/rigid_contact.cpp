@@ -1,7 +1,6 @@
 #include "fem/contact/rigid_contact.hpp"
 
 #include <algorithm>
-#include <numbers>
 #include <stdexcept>
 
 namespace tongue::fem {
@@ -16,8 +15,6 @@ RigidContact::RigidContact(std::vector<std::shared_ptr<const Obstacle>> obstacle
     throw std::invalid_argument("contact: smoothing must be positive [m]");
   if (!(settings_.search_depth > 0.0))
     throw std::invalid_argument("contact: search_depth must be positive [m]");
-  if (!(settings_.fold_angle > 0.0 && settings_.fold_angle <= 180.0))
-    throw std::invalid_argument("contact: fold_angle must lie in (0, 180] [degrees]");
 
   if (surface.empty()) surface = boundary_faces(mesh);
   // A quarter of each face's area to each of its corners (|d1 x d2| / 2 with d1, d2 the
@@ -44,7 +41,6 @@ void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
   const int num_obstacles = static_cast<int>(obstacles_.size());
   probes_.resize(nodes_.size() * obstacles_.size());
   const double depth = settings_.search_depth;
-  std::vector<Spring> springs;
   for (int i = 0; i < static_cast<int>(nodes_.size()); ++i) {
     const Vec3 x = rest_[i] + u.segment<3>(3 * nodes_[i]);
     for (int o = 0; o < num_obstacles; ++o) {
@@ -68,10 +64,7 @@ void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
         probe.normal = s.normal;
       } else {
         probe.reach = s.distance > -depth ? -1.0 : -s.distance - depth;
-        if (s.distance > -depth) {
-          node_springs(o, x, s, springs);
-          visit(i, o, s, springs);
-        }
+        if (s.distance > -depth) visit(i, o, s);
       }
     }
   }
@@ -83,36 +76,23 @@ RigidContact::Penalty RigidContact::penalty(int i, double p) const {
   return {eps * (p * p / 2.0 - w * p / 2.0 + w * w / 6.0), eps * (p - w / 2.0), eps};
 }
 
-void RigidContact::node_springs(int o, const Vec3& x, const SurfacePoint& s,
-                                std::vector<Spring>& springs) const {
-  springs.clear();
-  const Obstacle& obstacle = *obstacles_[o];
-  std::vector<SurfacePoint> sides;
-  obstacle.fold_points(x, s, settings_.fold_angle * std::numbers::pi / 180.0, sides);
-  for (const SurfacePoint& side : sides)
-    if (side.distance < 0.0 && side.distance > -settings_.search_depth)
-      springs.push_back({-side.distance, side.normal, side.curvature});
-}
-
 void RigidContact::add(const Vector& u, double /*load_factor*/, Vector& force,
                        SymmetricMatrix* stiffness) const {
-  for_each_contact(u, [&](int i, int, const SurfacePoint&, const std::vector<Spring>& springs) {
-    for (const Spring& spring : springs) {
-      const Penalty psi = penalty(i, spring.p);
-      force.segment<3>(3 * nodes_[i]) += psi.force * spring.normal;
-      if (stiffness != nullptr) {
-        const Mat3 block = psi.stiffness * spring.normal * spring.normal.transpose() +
-                           (psi.force / spring.p) * spring.curvature;
-        add_node_block(*stiffness, dofs_, nodes_[i], nodes_[i], block);
-      }
+  for_each_contact(u, [&](int i, int, const SurfacePoint& s) {
+    const double p = -s.distance;
+    const Penalty psi = penalty(i, p);
+    force.segment<3>(3 * nodes_[i]) += psi.force * s.normal;
+    if (stiffness != nullptr) {
+      const Mat3 block =
+          psi.stiffness * s.normal * s.normal.transpose() + (psi.force / p) * s.curvature;
+      add_node_block(*stiffness, dofs_, nodes_[i], nodes_[i], block);
     }
   });
 }
 
 void RigidContact::add_springs(const Vector& u, std::vector<NodeSpring>& springs) const {
-  for_each_contact(u, [&](int i, int, const SurfacePoint&, const std::vector<Spring>& node) {
-    for (const Spring& spring : node)
-      springs.push_back({nodes_[i], spring.normal, penalty(i, spring.p).stiffness, 0.0});
+  for_each_contact(u, [&](int i, int, const SurfacePoint& s) {
+    springs.push_back({nodes_[i], s.normal, penalty(i, -s.distance).stiffness, 0.0});
   });
   const std::lock_guard lock(probes_mutex_);
   const int num_obstacles = static_cast<int>(obstacles_.size());
@@ -131,19 +111,13 @@ void RigidContact::add_springs(const Vector& u, std::vector<NodeSpring>& springs
 ContactReport RigidContact::report(const Vector& u) const {
   ContactReport r;
   r.obstacle_force.assign(obstacles_.size(), Vec3::Zero());
-  // The penetration reported is the distance to the closest point, whatever springs hold the
-  // node: behind a concave fold it is at least each plane's.
-  for_each_contact(u, [&](int i, int o, const SurfacePoint& s, const std::vector<Spring>& springs) {
-    if (springs.empty()) return;  // behind a fold's edge but in front of its facets' planes
-    Vec3 f = Vec3::Zero();
-    for (const Spring& spring : springs) {
-      const Penalty psi = penalty(i, spring.p);
-      f += psi.force * spring.normal;
-      r.energy += psi.energy;
-    }
+  for_each_contact(u, [&](int i, int o, const SurfacePoint& s) {
+    const Penalty psi = penalty(i, -s.distance);
+    const Vec3 f = psi.force * s.normal;
     r.contacts.push_back({nodes_[i], o, s.distance, f, s.point});
     r.obstacle_force[o] -= f;
     r.max_penetration = std::max(r.max_penetration, -s.distance);
+    r.energy += psi.energy;
   });
   return r;
 }

@@ -16,14 +16,6 @@
 // obstacle's curvature term (zero inside a triangle, obstacle.hpp). A node touching several
 // obstacles gets the sum.
 //
-// A node behind a concave fold of an obstacle (two facets turning towards the solid by at least
-// fold_angle) holds each side of the fold on its own, a side going on past the fold in the plane
-// of its facet there (Obstacle::fold_points): the energy is the sum of psi over the sides it
-// lies behind. Behind the fold's edge the closest point's normal would swing round the fold's
-// angle within micrometres, and its curvature term, as stiff as the spring itself there, is no
-// spring a reused factor's corrections know; the planes' springs have fixed directions, which
-// the corrections carry exactly (docs/contact.md).
-//
 // The force does not scale with a load factor: contact is part of the solid, not a load.
 #include <memory>
 #include <mutex>
@@ -48,11 +40,6 @@ struct ContactSettings {
   // Points deeper than this behind an obstacle's surface are not in contact with it [m]: the
   // back of a sheet seen from the other side. Well beyond any penetration the penalty allows.
   double search_depth = 0.005;
-  // The least angle between the normals of two facets that fold concavely (towards the solid)
-  // at their edge for a node behind the fold to hold both facets' planes [degrees]; 180: none
-  // does, every node holds its closest point. The palate's fold round the tongue's tip is about
-  // 40 degrees, the rows of facets elsewhere a few degrees.
-  double fold_angle = 20.0;
 };
 
 // One node in contact with one obstacle.
@@ -105,18 +92,7 @@ class RigidContact : public ForceContribution {
     double energy, force, stiffness;
   };
   Penalty penalty(int i, double p) const;
-  // One spring of a node against an obstacle: penetration p > 0 along the outward normal, with
-  // the curvature term phi dn/dx (zero for a facet's plane).
-  struct Spring {
-    double p;
-    Vec3 normal;
-    Mat3 curvature;
-  };
-  // Replaces `springs` with those of a node at x whose closest point on obstacle o is s (behind
-  // it): s's own, or one for each side of a fold it lies behind (fold_points).
-  void node_springs(int o, const Vec3& x, const SurfacePoint& s,
-                    std::vector<Spring>& springs) const;
-  // Calls visit(candidate index, obstacle index, surface point, springs) for every contact at u.
+  // Calls visit(candidate index, obstacle index, surface point) for every contact at u.
   template <typename Visit>
   void for_each_contact(const Vector& u, Visit&& visit) const;
 

@@ -62,24 +62,4 @@ inline TriangleSurface square(const Vec3& c, const Vec3& n, double h, int n_div 
   return s;
 }
 
-// A sheet folded along the x axis, z = |y| tan(half_angle) + bend x^2 / 2 over |x|, |y| <= h:
-// two rows of facets meeting at a concave crease (normals 2 half_angle apart, towards +z, the
-// free side), each row bent gently upwards along x (mild concave folds between its columns).
-// n_div columns of two triangles a side.
-inline TriangleSurface folded_sheet(double half_angle, double bend, double h, int n_div) {
-  TriangleSurface s;
-  for (int j = 0; j <= 2; ++j)
-    for (int i = 0; i <= n_div; ++i) {
-      const double x = h * (2.0 * i / n_div - 1.0), y = h * (j - 1);
-      s.vertices.push_back(Vec3(x, y, std::abs(y) * std::tan(half_angle) + bend * x * x / 2.0));
-    }
-  const auto id = [&](int i, int j) { return j * (n_div + 1) + i; };
-  for (int j = 0; j < 2; ++j)
-    for (int i = 0; i < n_div; ++i) {
-      s.triangles.push_back({id(i, j), id(i + 1, j), id(i + 1, j + 1)});
-      s.triangles.push_back({id(i, j), id(i + 1, j + 1), id(i, j + 1)});
-    }
-  return s;
-}
-
 }  // namespace tongue::fem::test
