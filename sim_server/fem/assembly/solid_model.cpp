@@ -1,12 +1,15 @@
 #include "fem/assembly/solid_model.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <mutex>
 #include <numeric>
 #include <span>
 #include <stdexcept>
 #include <string>
+
+#include <Eigen/Geometry>
 
 namespace tongue::fem {
 
@@ -28,6 +31,7 @@ SolidModel::SolidModel(Mesh mesh, std::shared_ptr<const Material> material, Form
   rest_positions_.resize(3 * mesh_.num_nodes());
   for (int n = 0; n < mesh_.num_nodes(); ++n) rest_positions_.segment<3>(3 * n) = mesh_.nodes[n];
 
+  boundary_ = boundary_faces(mesh_);
   geometry_.reserve(mesh_.elements.size());
   rest_coords_.reserve(mesh_.elements.size());
   for (int e = 0; e < mesh_.num_elements(); ++e) {
@@ -427,14 +431,28 @@ double SolidModel::total_mass() const {
 }
 
 double SolidModel::current_volume(const Vector& u) const {
-  double v = 0.0;
-  for (int e = 0; e < mesh_.num_elements(); ++e) {
-    const hex8::ElementCoords xe = current_coords(e, u);
-    for (int q = 0; q < 8; ++q) {
-      v += geometry_[e].weight[q] * (xe.transpose() * geometry_[e].dN_dX[q]).determinant();
+  // A boundary face x(s, t), bilinear over [0, 1]^2 in its corners a, b, c, d (cyclic), adds
+  // int x . (x_s x x_t) ds dt, a polynomial of degree 2 in s and in t: 2 x 2 Gauss points are
+  // exact. Positions are taken from the first node's rest position, so that the face terms
+  // stay of the size of the volume's and their sum loses little to cancellation.
+  const Vec3 origin = mesh_.nodes.front();
+  const double g = 0.5 / std::sqrt(3.0);
+  const double points[2] = {0.5 - g, 0.5 + g};
+  double sum = 0.0;
+  for (const Quad4& face : boundary_) {
+    Vec3 x[4];
+    for (int k = 0; k < 4; ++k) x[k] = mesh_.nodes[face[k]] - origin + u.segment<3>(3 * face[k]);
+    for (double s : points) {
+      for (double t : points) {
+        const Vec3 p =
+            (1 - s) * (1 - t) * x[0] + s * (1 - t) * x[1] + s * t * x[2] + (1 - s) * t * x[3];
+        const Vec3 ps = (1 - t) * (x[1] - x[0]) + t * (x[2] - x[3]);
+        const Vec3 pt = (1 - s) * (x[3] - x[0]) + s * (x[2] - x[1]);
+        sum += p.dot(ps.cross(pt));
+      }
     }
   }
-  return v;
+  return sum / (3.0 * 4.0);  // (1/3) of the integral; each Gauss weight is 1/4
 }
 
 }  // namespace tongue::fem

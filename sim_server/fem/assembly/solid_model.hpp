@@ -16,6 +16,7 @@
 #include "fem/element/hex8_batch_tangent.hpp"
 #include "fem/element/hex8_element.hpp"
 #include "fem/material/material.hpp"
+#include "fem/mesh/boundary_faces.hpp"
 #include "fem/mesh/mesh.hpp"
 
 namespace tongue::fem {
@@ -77,7 +78,9 @@ class SolidModel {
   Vector body_force(const Vec3& acceleration) const;
   double total_mass() const;
   double reference_volume() const;
-  // Current volume sum over elements of int J dV [m^3] at displacement u.
+  // Current volume int J dV over the solid [m^3] at displacement u, by the divergence theorem
+  // over the boundary faces: (1/3) sum of int x . n dA, exact for trilinear elements as the
+  // elements' 2x2x2 Gauss sum is (the interior faces cancel), at a fraction of its cost.
   double current_volume(const Vector& u) const;
 
  private:
@@ -120,6 +123,7 @@ class SolidModel {
   DofMap dofs_;
   Vector rest_positions_;
   std::vector<ElementGeometry> geometry_;
+  std::vector<Quad4> boundary_;  // outward-oriented boundary faces, for current_volume
   std::shared_ptr<const BatchLayout> all_batches_;  // null unless the material is uncoupled
   mutable std::mutex packed_mutex_;
   mutable std::shared_ptr<const BatchLayout> packed_;  // the last packed layout, or null

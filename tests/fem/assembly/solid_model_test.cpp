@@ -484,5 +484,28 @@ TEST(SolidModel, CurrentVolumeIsExactForAffineDeformations) {
   EXPECT_GT(model.current_volume(displacement_field(mesh, deformation)), 0.0);
 }
 
+// The volume from the boundary faces is the elements' int J dV, summed over their 2 x 2 x 2
+// Gauss points (exact for trilinear maps), under a non-affine deformation of a distorted box.
+TEST(SolidModel, CurrentVolumeEqualsTheElementsGaussSum) {
+  const Mesh mesh = distorted_box();
+  const SolidModel model(mesh, mooney_rivlin(), Formulation::standard, kDensity, {});
+  const Vector u = displacement_field(mesh, deformation);
+  double expected = 0.0;
+  for (int e = 0; e < mesh.num_elements(); ++e) {
+    hex8::ElementCoords X, x;
+    for (int a = 0; a < 8; ++a) {
+      const int n = mesh.elements[e][a];
+      X.row(a) = mesh.nodes[n].transpose();
+      x.row(a) = (mesh.nodes[n] + u.segment<3>(3 * n)).transpose();
+    }
+    const ElementGeometry g = make_element_geometry(X);
+    for (int q = 0; q < 8; ++q)
+      expected += g.weight[q] * (x.transpose() * g.dN_dX[q]).determinant();
+  }
+  ASSERT_GT(std::abs(expected - model.reference_volume()), 1e-3 * expected);  // not the rest one
+  // Two exact integrations summed in different orders: round-off, about 1e-16 of the terms.
+  EXPECT_NEAR(model.current_volume(u), expected, 1e-13 * expected);
+}
+
 }  // namespace
 }  // namespace tongue::fem
