@@ -433,8 +433,9 @@ double SolidModel::total_mass() const {
 double SolidModel::current_volume(const Vector& u) const {
   // A boundary face x(s, t), bilinear over [0, 1]^2 in its corners a, b, c, d (cyclic), adds
   // int x . (x_s x x_t) ds dt, a polynomial of degree 2 in s and in t: 2 x 2 Gauss points are
-  // exact. Positions are taken from the first node's rest position, so that the face terms
-  // stay of the size of the volume's and their sum loses little to cancellation.
+  // exact. Positions are taken relative to the first node's rest position, so that the face
+  // terms stay of the size of the volume's and their sum loses little to cancellation.
+  if (boundary_.empty()) return 0.0;
   const Vec3 origin = mesh_.nodes.front();
   const double g = 0.5 / std::sqrt(3.0);
   const double points[2] = {0.5 - g, 0.5 + g};
