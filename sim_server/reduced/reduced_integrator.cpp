@@ -127,8 +127,9 @@ bool ReducedIntegrator::reduced_force(const fem::Vector& u, fem::Vector& f, fem:
                                       double* load_norm) const {
   fem::Vector r;
   if (!system_.residual(u, 1.0, r, K, load_norm, &weights_).ok) return false;
+  // Over the free dofs only: the modes are zero at the prescribed ones.
   f = origin_correction_;
-  multiply(phi_, true, r, 1.0, f);
+  multiply(phi_free_, true, system_.solid().dofs().gather_free(r), 1.0, f);
   return f.allFinite();
 }
 
@@ -278,9 +279,11 @@ bool ReducedIntegrator::advance(double dt, fem::StepReport& report, int depth) {
     x += dq;
     // The error left, as the full solver estimates it (newton_solver.hpp), in the nodes'
     // displacement.
-    fem::Vector change(phi_.rows());
-    multiply(phi_, false, dq, 0.0, change);
-    u += change;
+    fem::Vector change(phi_free_.rows());
+    multiply(phi_free_, false, dq, 0.0, change);
+    const std::vector<int>& free = system_.solid().dofs().free_dofs();
+    for (std::size_t i = 0; i < free.size(); ++i)
+      u[free[i]] += change[static_cast<Eigen::Index>(i)];
     const double size = change.lpNorm<Eigen::Infinity>();
     if (previous > 0.0) contraction_ = size / previous;
     const double rho = previous > 0.0 ? contraction_ : std::max(contraction_, kFirstContraction);
