@@ -24,7 +24,8 @@ std::vector<double> series(const run_file::RunFileReader& file, const char* name
   return values;
 }
 
-// The same, for a series the run must have (RunFileError-like message when it lacks it).
+// The same, for a series the page cannot draw without: its absence is an error naming the file
+// and the dataset.
 std::vector<double> required_series(const run_file::RunFileReader& file, const char* name,
                                     std::size_t frames, std::size_t per_frame) {
   std::vector<double> values = series(file, name, frames, per_frame);

@@ -100,9 +100,10 @@ def raw_request(port, data, timeout_s=TIMEOUT_S):
             s.shutdown(socket.SHUT_WR)
             while chunk := s.recv(65536):
                 reply += chunk
-        except OSError as e:  # reset, broken pipe, not connected: closed by the viewer
-            if isinstance(e, TimeoutError):
-                raise
+        except TimeoutError:
+            raise
+        except OSError:  # reset, broken pipe, not connected: closed by the viewer
+            pass
     return reply
 
 
