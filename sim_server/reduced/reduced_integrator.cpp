@@ -57,6 +57,10 @@ ReducedIntegrator::ReducedIntegrator(const fem::MechanicalSystem& system, Reduce
       origin_(std::move(basis.origin)),
       num_sampled_(static_cast<int>(basis.sample_elements.size())),
       mass_(system.solid().mass_matrix(settings.lumped_mass)) {
+  if (settings_.newmark.alpha != 0.0)
+    throw std::invalid_argument(
+        "reduced model: the alpha method (newmark: {spectral_radius}) is not supported; the "
+        "reduced model steps with beta and gamma only");
   const fem::SolidModel& solid = system.solid();
   const fem::DofMap& dofs = solid.dofs();
   if (phi_.rows() != solid.num_dofs() || origin_.size() != solid.num_dofs())

@@ -756,7 +756,16 @@ class Parser : private common::YamlReader {
     if (const auto nm = n["newmark"]; present(nm)) {
       const std::string nm_path = child_path(path, "newmark");
       expect_map(nm, nm_path);
-      check_keys(nm, nm_path, {"beta", "gamma"});
+      check_keys(nm, nm_path, {"beta", "gamma", "spectral_radius"});
+      if (const auto r = nm["spectral_radius"]; present(r)) {
+        const std::string r_path = child_path(nm_path, "spectral_radius");
+        if (present(nm["beta"]) || present(nm["gamma"]))
+          fail(r_path, "sets beta and gamma itself: give it or them, not both", r);
+        const double rho = number(r, r_path);
+        if (!(rho >= 0.5 && rho <= 1.0))
+          fail(r_path, "must lie in [0.5, 1], got " + number_text(rho), r);
+        a.newmark = fem::NewmarkParameters::bossak(rho);
+      }
       if (const auto b = nm["beta"]; present(b))
         a.newmark.beta = positive(b, child_path(nm_path, "beta"), "");
       if (const auto g = nm["gamma"]; present(g)) {

@@ -235,5 +235,13 @@ TEST(ReducedIntegrator, RefusesABasisForAnotherModel) {
   EXPECT_THROW(ReducedIntegrator(*c.system, basis, c.settings), std::invalid_argument);
 }
 
+TEST(ReducedIntegrator, RefusesTheAlphaMethod) {
+  Cantilever c;
+  const ReducedBasis basis = train(c, 0.0);
+  fem::DynamicSettings settings = c.settings;
+  settings.newmark = fem::NewmarkParameters::bossak(0.8);
+  EXPECT_THROW(ReducedIntegrator(*c.system, basis, settings), std::invalid_argument);
+}
+
 }  // namespace
 }  // namespace tongue::reduced

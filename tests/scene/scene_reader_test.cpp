@@ -377,6 +377,31 @@ TEST(SceneErrors, NewmarkGammaBelowHalf) {
                "analysis.newmark.gamma");
 }
 
+TEST(SceneReader, NewmarkSpectralRadiusSetsTheAlphaMethod) {
+  const Scene s = parse_scene(
+      std::string(kDynamicHead) +
+          "analysis: {type: dynamic, duration: 0.1, dt: 0.01, newmark: {spectral_radius: 0.8}}\n",
+      ".");
+  const fem::NewmarkParameters p = fem::NewmarkParameters::bossak(0.8);
+  EXPECT_EQ(s.analysis.newmark.alpha, p.alpha);
+  EXPECT_EQ(s.analysis.newmark.beta, p.beta);
+  EXPECT_EQ(s.analysis.newmark.gamma, p.gamma);
+}
+
+TEST(SceneErrors, NewmarkSpectralRadiusOutOfRange) {
+  expect_error(std::string(kDynamicHead) +
+                   "analysis: {type: dynamic, duration: 0.1, dt: 0.01, newmark: "
+                   "{spectral_radius: 0.3}}\n",
+               "analysis.newmark.spectral_radius", "[0.5, 1]");
+}
+
+TEST(SceneErrors, NewmarkSpectralRadiusWithBetaOrGamma) {
+  expect_error(std::string(kDynamicHead) +
+                   "analysis: {type: dynamic, duration: 0.1, dt: 0.01, newmark: "
+                   "{spectral_radius: 0.8, gamma: 0.6}}\n",
+               "analysis.newmark.spectral_radius", "not both");
+}
+
 TEST(SceneErrors, BooleanExpected) {
   expect_error(std::string(kDynamicHead) +
                    "analysis: {type: dynamic, duration: 0.1, dt: 0.01, settle: maybe}\n",

@@ -11,7 +11,9 @@ namespace tongue::fem {
 // a_s = a(u_n), v_s = v(a_s), c0 = 1 / (beta dt^2), c1 = gamma / (beta dt) (Bathe 1996
 // sec. 9.2.4). With C = (S - c0 M) / c1 the step's constant part needs M alone:
 //   M a(x) + C v(x) = S (x - s) + b,  s = u_n - v_s / c1,  b = M (a_s - (c0 / c1) v_s):
-// one product with S per residual and one with M per step. The products run on full vectors
+// one product with S per residual and one with M per step. The alpha method's inertia
+// M [(1 - alpha) a(x) + alpha a_n] is the same with c0 (1 - alpha) for c0 in S and b, and
+// (1 - alpha) a_s + alpha a_n for a_s in b. The products run on full vectors
 // in node blocks (NodeBlockMatrix), where the residual is assembled, before its free entries
 // are gathered.
 class NewmarkIntegrator::StepProblem : public NonlinearProblem {
@@ -34,7 +36,13 @@ class NewmarkIntegrator::StepProblem : public NonlinearProblem {
     shift_full_ = in_.u_;
     dofs_.scatter_free(u_n_ - v_start / c1, shift_full_);
     Vector mass_operand = Vector::Zero(u_full_.size());
-    dofs_.scatter_free(a_start - (c0_ / c1) * v_start, mass_operand);
+    const double alpha = in_.settings_.newmark.alpha;
+    if (alpha == 0.0) {
+      dofs_.scatter_free(a_start - (c0_ / c1) * v_start, mass_operand);
+    } else {
+      dofs_.scatter_free((1.0 - alpha) * a_start + alpha * a_n_ - ((1.0 - alpha) * c0_ / c1) * v_start,
+                         mass_operand);
+    }
     b_full_ = Vector::Zero(u_full_.size());
     in_.mass_blocks_.multiply_add(mass_operand, b_full_);
   }
@@ -89,12 +97,19 @@ const SymmetricMatrix& NewmarkIntegrator::dynamic_matrix(double dt) {
   if (!dynamic_matrix_ || dynamic_matrix_dt_ != dt) {
     const NewmarkParameters& p = settings_.newmark;
     if (!dynamic_matrix_) dynamic_matrix_.emplace(mass_.shared_pattern());
-    dynamic_matrix_->scale_and_add(0.0, 1.0 / (p.beta * dt * dt), mass_);
+    dynamic_matrix_->scale_and_add(0.0, (1.0 - p.alpha) / (p.beta * dt * dt), mass_);
     if (damping_) dynamic_matrix_->scale_and_add(1.0, p.gamma / (p.beta * dt), *damping_);
     dynamic_blocks_ = NodeBlockMatrix(*dynamic_matrix_, system_.solid().dofs());
     dynamic_matrix_dt_ = dt;
   }
   return *dynamic_matrix_;
+}
+
+NewmarkParameters NewmarkParameters::bossak(double rho_inf) {
+  if (!(rho_inf >= 0.5 && rho_inf <= 1.0))
+    throw std::invalid_argument("the alpha method's spectral radius must lie in [1/2, 1]");
+  const double alpha = (rho_inf - 1.0) / (rho_inf + 1.0);
+  return {0.25 * (1.0 - alpha) * (1.0 - alpha), 0.5 - alpha, alpha};
 }
 
 NewmarkIntegrator::NewmarkIntegrator(const MechanicalSystem& system, DynamicSettings settings)
@@ -106,6 +121,9 @@ NewmarkIntegrator::NewmarkIntegrator(const MechanicalSystem& system, DynamicSett
   const NewmarkParameters& p = settings_.newmark;
   if (!(p.beta > 0.0) || !(p.gamma >= 0.5)) {
     throw std::invalid_argument("Newmark needs beta > 0 and gamma >= 1/2 (implicit and stable)");
+  }
+  if (!(p.alpha <= 0.0 && p.alpha >= -1.0 / 3.0)) {
+    throw std::invalid_argument("the alpha method needs -1/3 <= alpha <= 0");
   }
   const int n = system.solid().num_dofs();
   u_ = v_ = a_ = Vector::Zero(n);

@@ -3,7 +3,8 @@
 // Bathe 1996, sec. 9.2.4):
 //   u_{n+1} = u_n + dt v_n + dt^2 [(1/2 - beta) a_n + beta a_{n+1}],
 //   v_{n+1} = v_n + dt [(1 - gamma) a_n + gamma a_{n+1}],
-// each step solved for u_{n+1} by Newton. beta = 1/4, gamma = 1/2 (average acceleration) is
+// each step solved for u_{n+1} by Newton (the inertia optionally weighted as the alpha method of
+// Wood, Bossak & Zienkiewicz weights it, below). beta = 1/4, gamma = 1/2 (average acceleration) is
 // unconditionally stable and second-order accurate. Rayleigh damping C = alpha M + beta_R K0,
 // with K0 the solid's tangent stiffness (without load stiffness) at the state the integrator is
 // initialized in (for the tongue:
@@ -20,9 +21,18 @@
 
 namespace tongue::fem {
 
+// beta, gamma and, for the alpha method of Wood, Bossak & Zienkiewicz (1980, Int. J. Numer.
+// Meth. Eng. 15), the weight alpha <= 0 of a_n in the inertia, M [(1 - alpha) a_{n+1} +
+// alpha a_n]: with gamma = 1/2 - alpha and beta = (1 - alpha)^2 / 4 the scheme stays
+// second-order accurate and damps the modes that a step cannot resolve (omega dt -> infinity)
+// by a factor rho_inf = (1 + alpha) / (1 - alpha) a step, where the average-acceleration rule
+// (alpha = 0) keeps them forever (Hughes 2000, sec. 9.3.2).
 struct NewmarkParameters {
   double beta = 0.25;
   double gamma = 0.5;
+  double alpha = 0.0;
+  // The alpha method's parameters for a spectral radius rho_inf in [1/2, 1] at infinite omega dt.
+  static NewmarkParameters bossak(double rho_inf);
 };
 
 struct RayleighDamping {
