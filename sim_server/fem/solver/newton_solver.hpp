@@ -31,7 +31,9 @@ struct NewtonSettings {
   int max_iterations = 25;
   bool line_search = true;
   // Modified Newton: a factorization may serve up to this many iterations (0: full Newton),
-  // across steps, and is re-formed when ||r_k+1|| > reform_ratio ||r_k||.
+  // across steps, and is re-formed when ||r_k+1|| > reform_ratio ||r_k||, unless the
+  // displacement decides convergence and the corrections of this solve at least halve
+  // (||dx_k+1|| < ||dx_k|| / 2).
   int max_tangent_reuse = 0;
   double reform_ratio = 0.5;
   // With a reused factor, the direction is corrected by up to this many BFGS updates built from
