@@ -38,11 +38,23 @@ RigidContact::RigidContact(std::vector<std::shared_ptr<const Obstacle>> obstacle
 template <typename Visit>
 void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
   const std::lock_guard lock(probes_mutex_);
+  const int num_candidates = static_cast<int>(nodes_.size());
+  bool same = static_cast<int>(found_at_.size()) == num_candidates;
+  for (int i = 0; same && i < num_candidates; ++i)
+    same = found_at_[i] == rest_[i] + u.segment<3>(3 * nodes_[i]);
+  if (same) {
+    for (const Found& f : found_) visit(f.candidate, f.obstacle, f.point);
+    return;
+  }
+  found_at_.clear();  // valid again once every candidate is done
+  found_.clear();
+  std::vector<Vec3> at(num_candidates);
   const int num_obstacles = static_cast<int>(obstacles_.size());
   probes_.resize(nodes_.size() * obstacles_.size());
   const double depth = settings_.search_depth;
-  for (int i = 0; i < static_cast<int>(nodes_.size()); ++i) {
+  for (int i = 0; i < num_candidates; ++i) {
     const Vec3 x = rest_[i] + u.segment<3>(3 * nodes_[i]);
+    at[i] = x;
     for (int o = 0; o < num_obstacles; ++o) {
       Probe& probe = probes_[i * num_obstacles + o];
       if ((x - probe.at).norm() < probe.reach) continue;
@@ -64,10 +76,14 @@ void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
         probe.normal = s.normal;
       } else {
         probe.reach = s.distance > -depth ? -1.0 : -s.distance - depth;
-        if (s.distance > -depth) visit(i, o, s);
+        if (s.distance > -depth) {
+          visit(i, o, s);
+          found_.push_back({i, o, s});
+        }
       }
     }
   }
+  found_at_.swap(at);
 }
 
 RigidContact::Penalty RigidContact::penalty(int i, double p) const {

@@ -116,6 +116,15 @@ class RigidContact : public ForceContribution {
     Vec3 normal = Vec3::Zero();
   };
   mutable std::vector<Probe> probes_;  // [candidate * obstacles + obstacle]
+  // The contacts found at the last u, by candidate position: a Newton iteration asks for the
+  // force and for the springs at the same u, and the line search's last trial is the next
+  // iterate.
+  struct Found {
+    int candidate, obstacle;
+    SurfacePoint point;
+  };
+  mutable std::vector<Vec3> found_at_;
+  mutable std::vector<Found> found_;
   mutable std::mutex probes_mutex_;
 };
 

@@ -65,6 +65,46 @@ TEST(RigidContact, TangentIsTheDerivativeOfTheForce) {
   EXPECT_LT(worst, 1e-8 * scale);
 }
 
+// The contacts found at the last positions are reused when asked again at the same ones (a
+// Newton iteration asks for the force and the springs at one u): the force and springs at u,
+// asked again after other positions, equal those of a contact that never saw anything else.
+TEST(RigidContact, AskedAgainAtTheSamePositionsGivesTheSameContacts) {
+  const Mesh mesh = make_box(Vec3(-0.01, -0.01, -0.01), Vec3(0.02, 0.02, 0.02), 2, 2, 2);
+  const auto solid = make_solid(mesh);
+  auto make = [&] {
+    return RigidContact({obstacle("ball", test::icosphere(Vec3(0.0, 0.0, 0.022), 0.015, 0))},
+                        mesh, solid->dofs());
+  };
+  const RigidContact reused = make(), fresh = make();
+  Vector u = Vector::Zero(solid->num_dofs()), v = u;
+  for (int n = 0; n < mesh.num_nodes(); ++n) {
+    u[3 * n + 2] = 0.001;    // the top face (z = 10 mm) 4 mm into the ball (lowest at 7 mm)
+    v[3 * n + 2] = -0.004;  // 1 mm below it
+  }
+  auto force = [&](const RigidContact& c, const Vector& at) {
+    Vector f = Vector::Zero(at.size());
+    c.add(at, 1.0, f, nullptr);
+    return f;
+  };
+  auto springs = [&](const RigidContact& c, const Vector& at) {
+    std::vector<NodeSpring> s;
+    c.add_springs(at, s);
+    return s;
+  };
+  const Vector first = force(reused, u);
+  ASSERT_GT(first.norm(), 0.0);
+  EXPECT_EQ(force(reused, u), first);       // again at u
+  EXPECT_EQ(force(reused, v).norm(), 0.0);  // elsewhere: out of contact
+  const std::vector<NodeSpring> again = springs(reused, u), expected = springs(fresh, u);
+  ASSERT_EQ(again.size(), expected.size());
+  for (std::size_t i = 0; i < again.size(); ++i) {
+    EXPECT_EQ(again[i].node, expected[i].node);
+    EXPECT_EQ(again[i].direction, expected[i].direction);
+    EXPECT_EQ(again[i].stiffness, expected[i].stiffness);
+  }
+  EXPECT_EQ(force(reused, u), force(fresh, u));
+}
+
 // The penetration under a contact pressure P: psi'(p) = eps p^2 / (2 w) up to p = w, then
 // eps (p - w / 2), per unit area (rigid_contact.hpp).
 double penetration(double P, const ContactSettings& s) {
