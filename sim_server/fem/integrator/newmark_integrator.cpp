@@ -37,12 +37,9 @@ class NewmarkIntegrator::StepProblem : public NonlinearProblem {
     dofs_.scatter_free(u_n_ - v_start / c1, shift_full_);
     Vector mass_operand = Vector::Zero(u_full_.size());
     const double alpha = in_.settings_.newmark.alpha;
-    if (alpha == 0.0) {
-      dofs_.scatter_free(a_start - (c0_ / c1) * v_start, mass_operand);
-    } else {
-      dofs_.scatter_free((1.0 - alpha) * a_start + alpha * a_n_ - ((1.0 - alpha) * c0_ / c1) * v_start,
-                         mass_operand);
-    }
+    dofs_.scatter_free(
+        (1.0 - alpha) * a_start + alpha * a_n_ - ((1.0 - alpha) * c0_ / c1) * v_start,
+        mass_operand);
     b_full_ = Vector::Zero(u_full_.size());
     in_.mass_blocks_.multiply_add(mass_operand, b_full_);
   }

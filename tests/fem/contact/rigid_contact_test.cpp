@@ -72,13 +72,13 @@ TEST(RigidContact, AskedAgainAtTheSamePositionsGivesTheSameContacts) {
   const Mesh mesh = make_box(Vec3(-0.01, -0.01, -0.01), Vec3(0.02, 0.02, 0.02), 2, 2, 2);
   const auto solid = make_solid(mesh);
   auto make = [&] {
-    return RigidContact({obstacle("ball", test::icosphere(Vec3(0.0, 0.0, 0.022), 0.015, 0))},
-                        mesh, solid->dofs());
+    return RigidContact({obstacle("ball", test::icosphere(Vec3(0.0, 0.0, 0.022), 0.015, 0))}, mesh,
+                        solid->dofs());
   };
   const RigidContact reused = make(), fresh = make();
   Vector u = Vector::Zero(solid->num_dofs()), v = u;
   for (int n = 0; n < mesh.num_nodes(); ++n) {
-    u[3 * n + 2] = 0.001;    // the top face (z = 10 mm) 4 mm into the ball (lowest at 7 mm)
+    u[3 * n + 2] = 0.001;   // the top face (z = 10 mm) 4 mm into the ball (lowest at 7 mm)
     v[3 * n + 2] = -0.004;  // 1 mm below it
   }
   auto force = [&](const RigidContact& c, const Vector& at) {
