@@ -112,9 +112,14 @@ def main():
                       flush=True)
     seq, par = statistics.median(sequential), statistics.median(parallel)
     low = statistics.median(floor)
+    # Each repeat's own ratio compares two runs made one after the other, under the same load
+    # from others on the machine; the ratio of the medians may take them from different repeats.
+    paired = [p / s for p, s in zip(parallel, sequential)]
     print(f"{args.runs} runs of {args.duration} s simulated, medians of {args.repeats}: "
           f"sequential {seq:.2f} s ({1e3 * seq / args.runs:.0f} ms a run), sweep on "
-          f"{args.workers} workers {par:.2f} s: {par / seq:.2f}x the sequential time "
+          f"{args.workers} workers {par:.2f} s: {par / seq:.2f}x the sequential time; the "
+          f"repeats' own ratios {statistics.median(paired):.2f}x "
+          f"({min(paired):.2f}-{max(paired):.2f}) "
           f"(plain pool {low:.2f} s, {low / seq:.2f}x; two CPU loops at once "
           f"{statistics.median(pair):.2f}x one after the other); cluster start-up "
           f"{startup:.2f} s (once per command)")
