@@ -762,9 +762,11 @@ class Parser : private common::YamlReader {
         if (present(nm["beta"]) || present(nm["gamma"]))
           fail(r_path, "sets beta and gamma itself: give it or them, not both", r);
         const double rho = number(r, r_path);
-        if (!(rho >= 0.5 && rho <= 1.0))
-          fail(r_path, "must lie in [0.5, 1], got " + number_text(rho), r);
-        a.newmark = fem::NewmarkParameters::bossak(rho);
+        try {
+          a.newmark = fem::NewmarkParameters::bossak(rho);
+        } catch (const std::invalid_argument& e) {
+          fail(r_path, std::string(e.what()) + ", got " + number_text(rho), r);
+        }
       }
       if (const auto b = nm["beta"]; present(b))
         a.newmark.beta = positive(b, child_path(nm_path, "beta"), "");

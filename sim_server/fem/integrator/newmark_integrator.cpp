@@ -104,7 +104,7 @@ const SymmetricMatrix& NewmarkIntegrator::dynamic_matrix(double dt) {
 
 NewmarkParameters NewmarkParameters::bossak(double rho_inf) {
   if (!(rho_inf >= 0.5 && rho_inf <= 1.0))
-    throw std::invalid_argument("the alpha method's spectral radius must lie in [1/2, 1]");
+    throw std::invalid_argument("the alpha method's spectral radius must lie in [0.5, 1]");
   const double alpha = (rho_inf - 1.0) / (rho_inf + 1.0);
   return {0.25 * (1.0 - alpha) * (1.0 - alpha), 0.5 - alpha, alpha};
 }
