@@ -89,8 +89,7 @@ int tip_node(int nx, int ny, int nz) {
   return nx + (nx + 1) * (ny / 2 + (ny + 1) * (nz / 2));
 }
 
-DynamicResult run_dynamic(const MechanicalSystem& system, int steps, int max_tangent_reuse,
-                          int tip) {
+DynamicResult run_dynamic(MechanicalSystem& system, int steps, int max_tangent_reuse, int tip) {
   DynamicSettings settings;
   settings.damping.stiffness_coefficient = kRayleighBeta;
   settings.newton.max_tangent_reuse = max_tangent_reuse;

@@ -346,8 +346,9 @@ class BatchRun {
   void contact() const {
     if (!built().contact) return;
     const auto& obstacles = built().contact->obstacles();
-    std::printf("         contact: max penetration %.4f mm; at the end %zu nodes in contact, ",
-                max_penetration_ * 1e3, last_contact_.contacts.size());
+    std::printf("         contact: max penetration %.4f mm, %d augmented solves; ",
+                max_penetration_ * 1e3, stepping_.augmentations);
+    std::printf("at the end %zu nodes in contact, ", last_contact_.contacts.size());
     std::printf("force on each obstacle [N]:\n");
     for (std::size_t o = 0; o < obstacles.size(); ++o) {
       const fem::Vec3 f = o < last_contact_.obstacle_force.size() ? last_contact_.obstacle_force[o]

@@ -91,11 +91,14 @@
 //         # toward the solid; length_scale (default 1) turns file units into metres, then
 //         # rotate (degrees about x, then y, then z; default none) and translate (m). No node of
 //         # the solid may start behind an obstacle.
-//   contact: {penalty: 3.0e8, smoothing: 2.0e-5, search_depth: 0.005}   # optional; needs
+//   contact: {penalty: 3.0e8, smoothing: 2.0e-5, search_depth: 0.005,
+//             penetration_tolerance: 1.0e-4, max_augmentations: 4}   # optional; needs
 //         # obstacles; the defaults shown (fem::ContactSettings). penalty [Pa/m]: contact
 //         # pressure per metre of penetration; smoothing [m]: the penetration over which the
 //         # penalty's stiffness grows from 0; search_depth [m]: points deeper behind a surface
-//         # are not in contact with it
+//         # are not in contact with it; penetration_tolerance [m]: a dynamic step that leaves a
+//         # node deeper is solved again with augmented-Lagrangian multipliers, at most
+//         # max_augmentations times (0: the plain penalty)
 //   analysis:                      # required
 //     type: dynamic                # required: static | dynamic
 //     settle: false                # dynamic: start from static equilibrium under the loads

@@ -868,13 +868,19 @@ class Parser : private common::YamlReader {
 
   void read_contact(const YAML::Node& n, const std::string& path, fem::ContactSettings& c) const {
     expect_map(n, path);
-    check_keys(n, path, {"penalty", "smoothing", "search_depth"});
+    check_keys(
+        n, path,
+        {"penalty", "smoothing", "search_depth", "penetration_tolerance", "max_augmentations"});
     if (const auto v = n["penalty"]; present(v))
       c.penalty = positive(v, child_path(path, "penalty"), "Pa/m");
     if (const auto v = n["smoothing"]; present(v))
       c.smoothing = positive(v, child_path(path, "smoothing"), "m");
     if (const auto v = n["search_depth"]; present(v))
       c.search_depth = positive(v, child_path(path, "search_depth"), "m");
+    if (const auto v = n["penetration_tolerance"]; present(v))
+      c.penetration_tolerance = non_negative(v, child_path(path, "penetration_tolerance"), "m");
+    if (const auto v = n["max_augmentations"]; present(v))
+      c.max_augmentations = at_least(v, child_path(path, "max_augmentations"), 0);
   }
 
   void read_model(const YAML::Node& n, const std::string& path, ModelSpec& m) const {

@@ -38,6 +38,12 @@ TEST_F(SceneObstacles, ReaderRefusesWhatItCannotPlace) {
       "obstacles[1].name", "defined twice");
   expect_parse_error(box + "obstacles: [{name: a, file: " + floor + "}]\ncontact: {penalty: -1}\n",
                      "contact.penalty");
+  expect_parse_error(box + "obstacles: [{name: a, file: " + floor +
+                         "}]\ncontact: {penetration_tolerance: -1e-4}\n",
+                     "contact.penetration_tolerance");
+  expect_parse_error(
+      box + "obstacles: [{name: a, file: " + floor + "}]\ncontact: {max_augmentations: -1}\n",
+      "contact.max_augmentations");
 }
 
 TEST_F(SceneObstacles, FileIsScaledRotatedAndTranslated) {
@@ -93,7 +99,7 @@ TEST(SceneVocalTract, BuiltInTongueGetsItsFourSurfaces) {
 mesh: {tongue: {refinement: 1}}
 material: {type: mooney_rivlin5}
 obstacles: vocal_tract
-contact: {penalty: 2.0e8, smoothing: 1.0e-5}
+contact: {penalty: 2.0e8, smoothing: 1.0e-5, penetration_tolerance: 5.0e-5, max_augmentations: 2}
 analysis: {type: static}
 )",
                                                    "", "test.yaml"));
@@ -104,6 +110,8 @@ analysis: {type: static}
             (std::vector<std::string>{"hard_palate", "upper_teeth", "velum", "pharyngeal_wall"}));
   EXPECT_EQ(built.contact->settings().penalty, 2.0e8);
   EXPECT_EQ(built.contact->settings().smoothing, 1.0e-5);
+  EXPECT_EQ(built.contact->settings().penetration_tolerance, 5.0e-5);
+  EXPECT_EQ(built.contact->settings().max_augmentations, 2);
   // No node starts in contact (the builder would have refused it) and some are candidates.
   EXPECT_TRUE(built.contact->report(fem::Vector::Zero(built.solid->num_dofs())).contacts.empty());
   EXPECT_GT(built.contact->nodes().size(), 300u);

@@ -16,11 +16,13 @@
 namespace tongue::scene_run {
 namespace {
 
-// The largest penetration the default penalty allows the scenes [m] (fem::ContactSettings).
+// The largest penetration the default contact settings allow [m]: the penalty's at the scenes'
+// resting forces, the multipliers' tolerance on impact (fem::ContactSettings).
 constexpr double kPenetrationBound = 1e-4;
 
 struct ContactRun {
   std::vector<double> depth;  // m, the deepest penetration of each step
+  int augmentations = 0;      // solves repeated with the multipliers
   double deepest() const {    // m, over the run
     return depth.empty() ? 0.0 : *std::max_element(depth.begin(), depth.end());
   }
@@ -46,6 +48,7 @@ ContactRun run_scene(const scene::Scene& scene) {
     const StepResult r = run.step(dt, run.built().activations.levels_at(run.time() + dt));
     EXPECT_TRUE(r.report.converged) << name << " step " << s + 1 << ": " << r.report.message;
     if (!r.report.converged) break;
+    out.augmentations += r.report.augmentations;
     out.last = contact.report(run.displacement());
     out.depth.push_back(out.last.max_penetration);
   }
@@ -84,12 +87,11 @@ TEST(TongueInVocalTract, StyloglossusClosesOnTheVelum) {
 
 // The hardest push the scenes' muscles can give: GGp and SG at full force (level 1) from rest into
 // the vocal tract (scenes/tongue_i.yaml's scene with its activations replaced). Every step
-// converges (an inverted element would stop it) and, once the tongue rests on the palate, no node
-// is deeper than the bound (0.059 mm measured from 100 ms on). The first strike, at the speed the
-// full force gives the tongue (about 0.8 m/s), goes deeper (0.142 mm measured): a penalty's
-// penetration on impact grows with the approach speed, and the bound is the one for resting
-// contact.
-TEST(TongueInVocalTract, FullGgpAndSgConvergeAndRestWithinTheBound) {
+// converges (an inverted element would stop it) and no node is ever deeper than the bound: the
+// first strike, at the speed the full force gives the tongue (about 0.8 m/s), went 0.142 mm deep
+// on the penalty alone, and the step that made it is solved again with the augmented
+// Lagrangian's multipliers (0.084 mm deep at most over the run, measured).
+TEST(TongueInVocalTract, FullGgpAndSgConvergeAndStayWithinTheBound) {
   std::string text = tongue::testing::read_text("../../scenes/tongue_i.yaml");
   const std::string six = "  - {group: GGp, force: 6.0, start: 0.0}";
   ASSERT_NE(text.find(six), std::string::npos);
@@ -104,9 +106,9 @@ TEST(TongueInVocalTract, FullGgpAndSgConvergeAndRestWithinTheBound) {
   ASSERT_NE(strike, r.depth.end());
   for (auto d = strike; d != r.depth.end(); ++d)
     EXPECT_GT(*d, 0.0) << "step " << (d - r.depth.begin()) + 1 << " out of contact";
-  for (std::size_t s = 25; s < r.depth.size(); ++s)  // 100 ms on
-    EXPECT_LT(r.depth[s], kPenetrationBound) << "step " << s + 1;
-  EXPECT_LT(r.deepest(), 2.0 * kPenetrationBound);
+  for (std::size_t s = 0; s < r.depth.size(); ++s)
+    EXPECT_LE(r.depth[s], kPenetrationBound) << "step " << s + 1;
+  EXPECT_GT(r.augmentations, 0);  // the strike needed them
   EXPECT_GT(r.last.obstacle_force.at(obstacle(r, "hard_palate")).norm(), 3.0);  // 5.0 N measured
 }
 

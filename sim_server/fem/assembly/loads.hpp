@@ -43,6 +43,14 @@ class ForceContribution {
   // instead of forming it again, and engages those a correction would carry past their gap.
   // Default: none.
   virtual void add_springs(const Vector& /*u*/, std::vector<NodeSpring>& /*springs*/) const {}
+  // A load that enforces a constraint by an augmented Lagrangian (contact) keeps multipliers, the
+  // part of its force that no longer needs the constraint violated. begin_step() sets them to
+  // zero: a time step starts from the plain penalty. augment(u), at a step's converged u,
+  // updates them there (Uzawa's update) and returns true when the constraint was violated by
+  // more than the load's tolerance: the step is then solved again from u with them. Default: no
+  // multipliers.
+  virtual void begin_step() {}
+  virtual bool augment(const Vector& /*u*/) { return false; }
 };
 
 // A dead load: a fixed vector of nodal forces (gravity, point loads, tractions on the reference

@@ -1,6 +1,7 @@
 #include "fem/contact/rigid_contact.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 
 namespace tongue::fem {
@@ -15,6 +16,10 @@ RigidContact::RigidContact(std::vector<std::shared_ptr<const Obstacle>> obstacle
     throw std::invalid_argument("contact: smoothing must be positive [m]");
   if (!(settings_.search_depth > 0.0))
     throw std::invalid_argument("contact: search_depth must be positive [m]");
+  if (!(settings_.penetration_tolerance >= 0.0))
+    throw std::invalid_argument("contact: penetration_tolerance must not be negative [m]");
+  if (settings_.max_augmentations < 0)
+    throw std::invalid_argument("contact: max_augmentations must not be negative");
 
   if (surface.empty()) surface = boundary_faces(mesh);
   // A quarter of each face's area to each of its corners (|d1 x d2| / 2 with d1, d2 the
@@ -33,6 +38,7 @@ RigidContact::RigidContact(std::vector<std::shared_ptr<const Obstacle>> obstacle
     rest_.push_back(mesh.nodes[n]);
     node_penalty_.push_back(settings_.penalty * area[n]);
   }
+  shift_.assign(nodes_.size() * obstacles_.size(), 0.0);
 }
 
 template <typename Visit>
@@ -59,18 +65,19 @@ void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
       Probe& probe = probes_[i * num_obstacles + o];
       if ((x - probe.at).norm() < probe.reach) continue;
       const Obstacle& obstacle = *obstacles_[o];
+      const double shift = shift_[i * num_obstacles + o];
       probe.at = x;
       probe.in_front = false;
       // Outside the bounding box a point is outside a closed obstacle, and at least that far
       // from any surface, so out of reach of an open one while farther than the search depth.
       const double box = obstacle.box_distance(x);
-      probe.reach = obstacle.closed() ? box : box - depth;
+      probe.reach = obstacle.closed() ? box - shift : box - std::max(depth, shift);
       if (probe.reach > 0.0) continue;
       const SurfacePoint s = obstacle.closest(x);
       if (!s.valid) {  // beyond an open sheet's rim: in reach once within the depth of it
         probe.reach = (x - s.point).norm() - depth;
-      } else if (s.distance >= 0.0) {  // in front
-        probe.reach = s.distance;
+      } else if (s.distance >= shift) {  // in front
+        probe.reach = s.distance - shift;
         probe.in_front = true;
         probe.phi = s.distance;
         probe.normal = s.normal;
@@ -94,30 +101,39 @@ RigidContact::Penalty RigidContact::penalty(int i, double p) const {
 
 void RigidContact::add(const Vector& u, double /*load_factor*/, Vector& force,
                        SymmetricMatrix* stiffness) const {
-  for_each_contact(u, [&](int i, int, const SurfacePoint& s) {
-    const double p = -s.distance;
-    const Penalty psi = penalty(i, p);
+  const int num_obstacles = static_cast<int>(obstacles_.size());
+  for_each_contact(u, [&](int i, int o, const SurfacePoint& s) {
+    const double shift = shift_[i * num_obstacles + o];
+    const Penalty psi = penalty(i, shift - s.distance);
     force.segment<3>(3 * nodes_[i]) += psi.force * s.normal;
     if (stiffness != nullptr) {
+      // -psi' dn/dx = -(psi' / phi) C. Without a shift psi' vanishes as phi^2 at the surface;
+      // with one, a node near an edge or a vertex would see dn/dx grow without bound as it
+      // nears the surface, and |phi| is held at w there (the tangent of such nodes then no
+      // longer exact).
+      double phi = s.distance;
+      if (shift > 0.0 && std::abs(phi) < settings_.smoothing)
+        phi = phi > 0.0 ? settings_.smoothing : -settings_.smoothing;
       const Mat3 block =
-          psi.stiffness * s.normal * s.normal.transpose() + (psi.force / p) * s.curvature;
+          psi.stiffness * s.normal * s.normal.transpose() - (psi.force / phi) * s.curvature;
       add_node_block(*stiffness, dofs_, nodes_[i], nodes_[i], block);
     }
   });
 }
 
 void RigidContact::add_springs(const Vector& u, std::vector<NodeSpring>& springs) const {
-  for_each_contact(u, [&](int i, int, const SurfacePoint& s) {
-    springs.push_back({nodes_[i], s.normal, penalty(i, -s.distance).stiffness, 0.0});
+  const int num_obstacles = static_cast<int>(obstacles_.size());
+  for_each_contact(u, [&](int i, int o, const SurfacePoint& s) {
+    const double shift = shift_[i * num_obstacles + o];
+    springs.push_back({nodes_[i], s.normal, penalty(i, shift - s.distance).stiffness, 0.0});
   });
   const std::lock_guard lock(probes_mutex_);
-  const int num_obstacles = static_cast<int>(obstacles_.size());
   for (int i = 0; i < static_cast<int>(nodes_.size()); ++i) {
     const Vec3 x = rest_[i] + u.segment<3>(3 * nodes_[i]);
     for (int o = 0; o < num_obstacles; ++o) {
       const Probe& probe = probes_[i * num_obstacles + o];
       if (!probe.in_front) continue;
-      const double gap = probe.phi + probe.normal.dot(x - probe.at);
+      const double gap = probe.phi + probe.normal.dot(x - probe.at) - shift_[i * num_obstacles + o];
       if (gap > 0.0 && gap < kCandidateGap)
         springs.push_back({nodes_[i], probe.normal, node_penalty_[i], gap});
     }
@@ -127,8 +143,9 @@ void RigidContact::add_springs(const Vector& u, std::vector<NodeSpring>& springs
 ContactReport RigidContact::report(const Vector& u) const {
   ContactReport r;
   r.obstacle_force.assign(obstacles_.size(), Vec3::Zero());
+  const int num_obstacles = static_cast<int>(obstacles_.size());
   for_each_contact(u, [&](int i, int o, const SurfacePoint& s) {
-    const Penalty psi = penalty(i, -s.distance);
+    const Penalty psi = penalty(i, shift_[i * num_obstacles + o] - s.distance);
     const Vec3 f = psi.force * s.normal;
     r.contacts.push_back({nodes_[i], o, s.distance, f, s.point});
     r.obstacle_force[o] -= f;
@@ -136,6 +153,39 @@ ContactReport RigidContact::report(const Vector& u) const {
     r.energy += psi.energy;
   });
   return r;
+}
+
+void RigidContact::forget_queries() {
+  const std::lock_guard lock(probes_mutex_);
+  found_at_.clear();
+  for (Probe& probe : probes_) probe.reach = -1.0;
+}
+
+void RigidContact::begin_step() {
+  augmentations_ = 0;
+  if (!shifted_) return;
+  std::fill(shift_.begin(), shift_.end(), 0.0);
+  shifted_ = false;
+  forget_queries();
+}
+
+bool RigidContact::augment(const Vector& u) {
+  const double tolerance = settings_.penetration_tolerance;
+  if (!(tolerance > 0.0) || augmentations_ >= settings_.max_augmentations) return false;
+  const int num_obstacles = static_cast<int>(obstacles_.size());
+  double deepest = 0.0;
+  std::vector<double> next(shift_.size(), 0.0);  // zero for pairs out of contact
+  for_each_contact(u, [&](int i, int o, const SurfacePoint& s) {
+    deepest = std::max(deepest, -s.distance);
+    const int pair = i * num_obstacles + o;
+    next[pair] = std::max(0.0, shift_[pair] - s.distance - kTargetDepth * tolerance);
+  });
+  if (!(deepest > tolerance)) return false;
+  shift_.swap(next);
+  shifted_ = true;
+  ++augmentations_;
+  forget_queries();
+  return true;
 }
 
 }  // namespace tongue::fem

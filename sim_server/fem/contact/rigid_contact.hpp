@@ -16,6 +16,19 @@
 // obstacle's curvature term (zero inside a triangle, obstacle.hpp). A node touching several
 // obstacles gets the sum.
 //
+// Augmented Lagrangian (Simo & Laursen 1992, Computers & Structures 42; Wriggers 2006, sec. 6.3):
+// when a step's converged state has a node deeper than the tolerance t, each pair's multiplier
+// lambda = eps_i s is updated by Uzawa's rule for the constraint p <= t / 2,
+//     lambda <- max(0, lambda + eps_i (p - t / 2)),
+// and the step is solved again: the penalty then acts on p + s instead of p, as if the
+// obstacle's surface stood s in front of where it is, and a node that was deeper settles near
+// t / 2 with nearly the same force (each update shrinks the excess by about the ratio of the
+// stiffness behind the node to eps_i). The target is t / 2, not the surface: near an edge or a
+// vertex of the faceted obstacle the normal turns through 1 / |phi| radians per metre, and nodes
+// held at phi = 0 there made Newton's iteration cycle (the full-force push, docs/contact.md).
+// The multipliers start every step at zero, so a step whose nodes stay within the tolerance is
+// the plain penalty's.
+//
 // The force does not scale with a load factor: contact is part of the solid, not a load.
 #include <memory>
 #include <mutex>
@@ -40,13 +53,18 @@ struct ContactSettings {
   // Points deeper than this behind an obstacle's surface are not in contact with it [m]: the
   // back of a sheet seen from the other side. Well beyond any penetration the penalty allows.
   double search_depth = 0.005;
+  // [m]: a step whose converged state has a node deeper than this is solved again with the
+  // multipliers updated, at most max_augmentations times (0: the plain penalty). Without it the
+  // full-force push of the tongue strikes the palate 0.14 mm deep (docs/contact.md).
+  double penetration_tolerance = 1e-4;
+  int max_augmentations = 4;
 };
 
 // One node in contact with one obstacle.
 struct NodeContact {
   int node = 0;
   int obstacle = 0;
-  double distance = 0.0;      // signed distance phi < 0 [m]
+  double distance = 0.0;      // signed distance phi [m]: < 0, or below the multiplier's shift
   Vec3 force = Vec3::Zero();  // on the node [N]
   Vec3 point = Vec3::Zero();  // closest point on the obstacle [m]
 };
@@ -80,6 +98,11 @@ class RigidContact : public ForceContribution {
 
   ContactReport report(const Vector& u) const;
 
+  // The augmented Lagrangian's multipliers (ForceContribution): set to zero, and updated at u
+  // when a node is deeper than the tolerance there and updates are left this step.
+  void begin_step() override;
+  bool augment(const Vector& u) override;
+
   const std::vector<std::shared_ptr<const Obstacle>>& obstacles() const { return obstacles_; }
   const std::vector<int>& nodes() const { return nodes_; }
   // eps_i of each candidate node [N/m], in the order of nodes().
@@ -92,9 +115,14 @@ class RigidContact : public ForceContribution {
     double energy, force, stiffness;
   };
   Penalty penalty(int i, double p) const;
-  // Calls visit(candidate index, obstacle index, surface point) for every contact at u.
+  // The depth the multipliers hold a node at, over the tolerance.
+  static constexpr double kTargetDepth = 0.5;
+  // Calls visit(candidate index, obstacle index, surface point) for every contact at u: every
+  // pair whose signed distance is below its shift (and above -search_depth).
   template <typename Visit>
   void for_each_contact(const Vector& u, Visit&& visit) const;
+  // The queries' proofs and the contacts found hold for the shifts they were made with.
+  void forget_queries();
 
   std::vector<std::shared_ptr<const Obstacle>> obstacles_;
   DofMap dofs_;
@@ -102,6 +130,10 @@ class RigidContact : public ForceContribution {
   std::vector<int> nodes_;
   std::vector<Vec3> rest_;  // reference positions of nodes_ [m]
   std::vector<double> node_penalty_;
+  // s of each (candidate, obstacle) pair [m], candidate-major: the multiplier over eps_i.
+  std::vector<double> shift_;
+  bool shifted_ = false;   // some shift is not zero
+  int augmentations_ = 0;  // this step's
   // What the last closest-point query of each (node, obstacle) pair proved: no contact while the
   // node stays within `reach` of where it was (|phi| changes no faster than the node moves).
   // Most nodes are millimetres from every obstacle and move micrometres an iteration, so most

@@ -44,4 +44,14 @@ void MechanicalSystem::rank_one_terms(const Vector& u, std::vector<RankOneTerm>&
   }
 }
 
+void MechanicalSystem::begin_step() {
+  for (const auto& load : loads_) load->begin_step();
+}
+
+bool MechanicalSystem::augment(const Vector& u) {
+  bool again = false;
+  for (const auto& load : loads_) again = load->augment(u) || again;
+  return again;
+}
+
 }  // namespace tongue::fem

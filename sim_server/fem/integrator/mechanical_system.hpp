@@ -14,10 +14,8 @@ class MechanicalSystem {
  public:
   explicit MechanicalSystem(std::shared_ptr<const SolidModel> solid) : solid_(std::move(solid)) {}
 
-  void add_load(std::shared_ptr<const ForceContribution> load) {
-    loads_.push_back(std::move(load));
-  }
-  const std::vector<std::shared_ptr<const ForceContribution>>& loads() const { return loads_; }
+  void add_load(std::shared_ptr<ForceContribution> load) { loads_.push_back(std::move(load)); }
+  const std::vector<std::shared_ptr<ForceContribution>>& loads() const { return loads_; }
   const SolidModel& solid() const { return *solid_; }
 
   // r = f_int(u) - load_factor f_ext(u) over all dofs (loads that scale the solid's elements
@@ -33,10 +31,14 @@ class MechanicalSystem {
   // The loads' springs at u (ForceContribution::add_springs) as rank-one terms of the tangent
   // over the free dofs, in the loads' order.
   void rank_one_terms(const Vector& u, std::vector<RankOneTerm>& terms) const;
+  // The loads' augmented-Lagrangian multipliers (ForceContribution::begin_step, augment): set to
+  // zero; updated at a converged u, true when some load asks for the step to be solved again.
+  void begin_step();
+  bool augment(const Vector& u);
 
  private:
   std::shared_ptr<const SolidModel> solid_;
-  std::vector<std::shared_ptr<const ForceContribution>> loads_;
+  std::vector<std::shared_ptr<ForceContribution>> loads_;
 };
 
 }  // namespace tongue::fem

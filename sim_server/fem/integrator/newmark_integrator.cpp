@@ -109,7 +109,7 @@ NewmarkParameters NewmarkParameters::bossak(double rho_inf) {
   return {0.25 * (1.0 - alpha) * (1.0 - alpha), 0.5 - alpha, alpha};
 }
 
-NewmarkIntegrator::NewmarkIntegrator(const MechanicalSystem& system, DynamicSettings settings)
+NewmarkIntegrator::NewmarkIntegrator(MechanicalSystem& system, DynamicSettings settings)
     : system_(system),
       settings_(settings),
       mass_(system.solid().mass_matrix(settings.lumped_mass)),
@@ -137,6 +137,7 @@ void NewmarkIntegrator::initialize(const Vector& u0, const Vector& v0, double t0
     v_[dof] = 0.0;
   }
   t_ = t0;
+  system_.begin_step();  // multipliers of another state mean nothing here
   Vector r_full;
   if (!system_.residual(u_, 1.0, r_full, nullptr).ok) {
     throw std::runtime_error("initial state has an inverted element");
@@ -236,6 +237,7 @@ StepReport NewmarkIntegrator::prepare(double dt) {
 bool NewmarkIntegrator::advance(double dt, StepReport& report, int depth) {
   if (dt != last_dt_) newton_.invalidate_factor();  // the effective tangent depends on dt
   last_dt_ = dt;
+  system_.begin_step();
   StepProblem problem(*this, dt);
   const DofMap& dofs = system_.solid().dofs();
   // Newton starts from the constant-velocity predictor u_n + dt v_n. On the tongue it starts a
@@ -253,6 +255,14 @@ bool NewmarkIntegrator::advance(double dt, StepReport& report, int depth) {
     newton = newton_.solve(problem, x, &u_n);
   }
   report.add(newton);
+  // A constraint held by an augmented Lagrangian (contact deeper than its tolerance): solved
+  // again from here with the multipliers updated, until it holds (the load decides when to stop
+  // asking).
+  while (newton.converged && system_.augment(problem.full(x))) {
+    ++report.augmentations;
+    newton = newton_.solve(problem, x, &u_n);
+    report.add(newton);
+  }
 
   if (newton.converged) {
     const Vector a = problem.acceleration(x);

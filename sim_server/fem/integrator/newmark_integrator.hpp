@@ -51,7 +51,7 @@ struct DynamicSettings {
 
 class NewmarkIntegrator : public TimeIntegrator {
  public:
-  NewmarkIntegrator(const MechanicalSystem& system, DynamicSettings settings);
+  NewmarkIntegrator(MechanicalSystem& system, DynamicSettings settings);
   ~NewmarkIntegrator() override;
 
   // Sets u, v (full vectors; prescribed dofs take their prescribed values and zero velocity)
@@ -107,7 +107,7 @@ class NewmarkIntegrator : public TimeIntegrator {
   // c0 M + c1 C for this dt, formed again only when dt changes.
   const SymmetricMatrix& dynamic_matrix(double dt);
 
-  const MechanicalSystem& system_;
+  MechanicalSystem& system_;
   DynamicSettings settings_;
   SymmetricMatrix mass_;
   std::optional<SymmetricMatrix> damping_;

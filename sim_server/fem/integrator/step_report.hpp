@@ -28,6 +28,7 @@ struct StepReport {
   bool held = false;    // taken as the identity from a state at rest (nothing evaluated)
   std::string message;  // why a cut happened or why the step failed; empty when clean
   int newton_solves = 0;
+  int augmentations = 0;  // solves repeated with a load's multipliers updated (contact)
 
   // Records a failed (sub)step of dt at time t [s]: with cuts left it counts a cut and says the
   // step is halved, and returns true (the caller retries in halves); otherwise says no cuts are

@@ -7,7 +7,7 @@
 namespace tongue::fem {
 
 struct StepTotals {
-  int steps = 0, iterations = 0, cuts = 0, factorizations = 0, residuals = 0;
+  int steps = 0, iterations = 0, cuts = 0, factorizations = 0, residuals = 0, augmentations = 0;
   double assembly = 0.0, factorization = 0.0, solve = 0.0;  // s
   double wall = 0.0;                                        // s
   double residual = 0.0;                                    // the last step's final residual [N]
@@ -16,6 +16,7 @@ struct StepTotals {
     ++steps;
     iterations += r.iterations;
     cuts += r.cuts;
+    augmentations += r.augmentations;
     factorizations += r.factorizations;
     residuals += r.residual_evaluations;
     assembly += r.assembly_seconds;
