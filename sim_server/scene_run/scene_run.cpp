@@ -50,12 +50,12 @@ void SceneRun::restart(const fem::Vector& first_levels) {
   levels_ = fem::Vector::Zero(num_muscles());
   factor_levels_ = first_levels.size() != 0 ? first_levels : levels_;
   if (built_.muscles) built_.muscles->set_activations(levels_);
-  // A reduced model already running is initialized again: what it projected from the basis
-  // and, from the same initial state, its damping and the check's factorization stay valid.
+  // A model already running is initialized again: its matrices, their orderings and, from the
+  // same initial state, its damping (and a reduced model's projections and check) stay valid.
   if (basis_ && !reduced_now())
     integrator_ = std::make_unique<reduced::ReducedIntegrator>(*built_.system, *basis_,
                                                                built_.dynamic_settings);
-  else if (!basis_)
+  else if (!basis_ && !integrator_)
     integrator_ = std::make_unique<fem::NewmarkIntegrator>(*built_.system, built_.dynamic_settings);
   integrator_->initialize(initial_u_, fem::Vector::Zero(initial_u_.size()), 0.0);
   if (built_.muscles) built_.muscles->set_activations(factor_levels_);

@@ -142,14 +142,20 @@ void NewmarkIntegrator::initialize(const Vector& u0, const Vector& v0, double t0
   if (!system_.residual(u_, 1.0, r_full, nullptr).ok) {
     throw std::runtime_error("initial state has an inverted element");
   }
-  form_damping(u_);
+  // Initialized again at the state of the last time (a run restarted), C is the same.
+  if (!damping_state_ || *damping_state_ != u_) form_damping(u_);
   // M a0 = f_ext - f_int - C v0 over the free dofs.
   Vector rhs = -dofs.gather_free(r_full);
   if (damping_) rhs -= damping_->multiply(dofs.gather_free(v_));
-  CholmodSolver mass_solver(mass_.shared_pattern());
-  if (!mass_solver.factorize(mass_).ok) throw std::runtime_error("mass matrix is singular");
+  if (!mass_solver_) {
+    mass_solver_ = std::make_unique<CholmodSolver>(mass_.shared_pattern());
+    if (!mass_solver_->factorize(mass_).ok) {
+      mass_solver_.reset();
+      throw std::runtime_error("mass matrix is singular");
+    }
+  }
   a_ = Vector::Zero(u_.size());
-  dofs.scatter_free(mass_solver.solve(rhs), a_);
+  dofs.scatter_free(mass_solver_->solve(rhs), a_);
   newton_.invalidate_factor();
   initialized_ = true;
   in_equilibrium_ = false;
@@ -159,6 +165,7 @@ void NewmarkIntegrator::form_damping(const Vector& at) {
   const RayleighDamping& d = settings_.damping;
   damping_.reset();
   dynamic_matrix_.reset();
+  damping_state_ = at;
   if (!d.active()) return;
   damping_.emplace(system_.solid().pattern());
   damping_->scale_and_add(0.0, d.mass_coefficient, mass_);

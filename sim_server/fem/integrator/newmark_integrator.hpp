@@ -56,8 +56,9 @@ class NewmarkIntegrator : public TimeIntegrator {
 
   // Sets u, v (full vectors; prescribed dofs take their prescribed values and zero velocity)
   // and the consistent initial acceleration from M a = f_ext - f_int - C v; K0 for the damping
-  // is formed here. Throws std::runtime_error when f_int cannot be evaluated at u. A first
-  // step() without it starts from rest at u = 0.
+  // is formed here (kept when initialized again at the same u: a restarted run steps as a new
+  // integrator's would, bit for bit). Throws std::runtime_error when f_int cannot be evaluated
+  // at u. A first step() without it starts from rest at u = 0.
   void initialize(const Vector& u0, const Vector& v0, double t0 = 0.0) override;
   // The same mid-run, for a state another model hands over: the acceleration given instead of
   // the consistent one (a state that is not an equilibrium of this model would otherwise start
@@ -111,6 +112,8 @@ class NewmarkIntegrator : public TimeIntegrator {
   DynamicSettings settings_;
   SymmetricMatrix mass_;
   std::optional<SymmetricMatrix> damping_;
+  std::optional<Vector> damping_state_;  // the state K0 was taken at
+  std::unique_ptr<CholmodSolver> mass_solver_;  // M factorized, for initial accelerations
   std::optional<SymmetricMatrix> dynamic_matrix_;
   // M and c0 M + c1 C in node blocks, for the steps' products (node_block_matrix.hpp).
   NodeBlockMatrix mass_blocks_, dynamic_blocks_;
