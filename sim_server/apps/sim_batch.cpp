@@ -311,6 +311,9 @@ class BatchRun {
     std::printf("%6d %12.6f %5d %13.3e %10.2f %5d%s\n", step, time, r.iterations, r.final_residual,
                 r.wall_seconds * 1e3, r.cuts, r.converged ? "" : "  NOT CONVERGED");
     if (r.cuts > 0 && r.converged) std::printf("       cut: %s\n", r.message.c_str());
+    if (r.constraint_unmet)
+      std::printf(
+          "       contact: deeper than the penetration tolerance, max_augmentations spent\n");
   }
 
   void summary(int status) const {
@@ -348,6 +351,12 @@ class BatchRun {
     const auto& obstacles = built().contact->obstacles();
     std::printf("         contact: max penetration %.4f mm, %d augmented solves; ",
                 max_penetration_ * 1e3, stepping_.augmentations);
+    if (stepping_.constraints_unmet > 0) {
+      std::printf(
+          "steps accepted deeper than the penetration tolerance (max_augmentations "
+          "spent): %d; ",
+          stepping_.constraints_unmet);
+    }
     std::printf("at the end %zu nodes in contact, ", last_contact_.contacts.size());
     std::printf("force on each obstacle [N]:\n");
     for (std::size_t o = 0; o < obstacles.size(); ++o) {

@@ -16,7 +16,8 @@ namespace {
 
 // Longest single wait for messages [ms]: the stop predicate is looked at least this often.
 constexpr int kPollSliceMs = 100;
-// Overruns are reported on stderr at most once per this many seconds.
+// Overruns and steps accepted beyond the contact's tolerance are reported on stderr at most once
+// per kind per this many seconds.
 constexpr double kReportInterval = 1.0;
 // Real-time: a wait for the next step's start shorter than this [s] is slept, not polled (the
 // bus waits in whole milliseconds).
@@ -69,7 +70,7 @@ ServerLoop::ServerLoop(const scene::Scene& scene, scene::BuiltScene built, bus::
       bus_(bus),
       options_(std::move(options)),
       stop_requested_(std::move(stop_requested)),
-      overrun_reports_(kReportInterval),
+      step_reports_(kReportInterval),
       repeater_(options_.mode == Mode::lockstep ? options_.repeat_ms : 0, options_.repeats,
                 std::max(options_.repeat_ms, options_.timeout_ms)),
       input_(options_.mode, options_.controllers, muscle_names(run_)) {
@@ -392,6 +393,12 @@ void ServerLoop::take_step(const fem::Vector& levels) {
     return;
   }
   if (options_.mode == Mode::realtime) count_overrun(steady_seconds() - finish_by);
+  if (last_.report.constraint_unmet) {
+    step_reports_.report(
+        "contact", "sim_server: warning: step " + std::to_string(run_.step_count()) +
+                       " accepted with a node deeper than the contact's penetration tolerance "
+                       "(max_augmentations spent)");
+  }
   contact_.reset();
   // The state first: in lock-step the controller's turn starts with it, and the rest of the
   // step's work (the run file's frame, the bookkeeping) overlaps that turn.
@@ -411,7 +418,7 @@ void ServerLoop::count_overrun(double late) {
                 "sim_server: overrun: step %lld finished %.3g ms late; %lld overruns in all",
                 static_cast<long long>(run_.step_count()), late * 1e3,
                 static_cast<long long>(overruns_));
-  overrun_reports_.report("overrun", text);
+  step_reports_.report("overrun", text);
 }
 
 void ServerLoop::warn_material(const scene_run::EllipticityFinding& found) {

@@ -113,7 +113,7 @@ class ServerLoop {
   std::function<bool()> stop_requested_;
   std::unique_ptr<run_file::RunFileQueue> log_;
   std::vector<int> node_indices_;  // nodes the states carry
-  common::RateLimitedReporter overrun_reports_;
+  common::RateLimitedReporter step_reports_;
   StepTiming timing_;
   StateRepeater repeater_;
 

@@ -19,6 +19,13 @@ struct NodeSpring {
   double gap = 0.0;
 };
 
+// What a load's augmented Lagrangian says of a step's converged state (ForceContribution::augment).
+enum class Augmentation {
+  held,         // its constraint holds within its tolerance (or it has none)
+  solve_again,  // its multipliers were updated: the step is to be solved again
+  unmet,        // violated beyond its tolerance, and no updates left in this step
+};
+
 class ForceContribution {
  public:
   virtual ~ForceContribution() = default;
@@ -45,12 +52,12 @@ class ForceContribution {
   virtual void add_springs(const Vector& /*u*/, std::vector<NodeSpring>& /*springs*/) const {}
   // A load that enforces a constraint by an augmented Lagrangian (contact) keeps multipliers, the
   // part of its force that no longer needs the constraint violated. begin_step() sets them to
-  // zero: a time step starts from the plain penalty. augment(u), at a step's converged u,
-  // updates them there (Uzawa's update) and returns true when the constraint was violated by
-  // more than the load's tolerance: the step is then solved again from u with them. Default: no
-  // multipliers.
+  // zero: a time step starts from the plain penalty. augment(u), at a step's converged u, says
+  // whether the constraint holds there within the load's tolerance; when not, it updates the
+  // multipliers there (Uzawa's update) and the step is solved again from u with them, as long
+  // as the load allows updates. Default: no multipliers.
   virtual void begin_step() {}
-  virtual bool augment(const Vector& /*u*/) { return false; }
+  virtual Augmentation augment(const Vector& /*u*/) { return Augmentation::held; }
 };
 
 // A dead load: a fixed vector of nodal forces (gravity, point loads, tractions on the reference

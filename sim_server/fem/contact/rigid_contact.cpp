@@ -169,9 +169,9 @@ void RigidContact::begin_step() {
   forget_queries();
 }
 
-bool RigidContact::augment(const Vector& u) {
+Augmentation RigidContact::augment(const Vector& u) {
   const double tolerance = settings_.penetration_tolerance;
-  if (!(tolerance > 0.0) || augmentations_ >= settings_.max_augmentations) return false;
+  if (!(tolerance > 0.0)) return Augmentation::held;
   const int num_obstacles = static_cast<int>(obstacles_.size());
   double deepest = 0.0;
   std::vector<double> next(shift_.size(), 0.0);  // zero for pairs out of contact
@@ -180,12 +180,13 @@ bool RigidContact::augment(const Vector& u) {
     const int pair = i * num_obstacles + o;
     next[pair] = std::max(0.0, shift_[pair] - s.distance - kTargetDepth * tolerance);
   });
-  if (!(deepest > tolerance)) return false;
+  if (!(deepest > tolerance)) return Augmentation::held;
+  if (augmentations_ >= settings_.max_augmentations) return Augmentation::unmet;
   shift_.swap(next);
   shifted_ = true;
   ++augmentations_;
   forget_queries();
-  return true;
+  return Augmentation::solve_again;
 }
 
 }  // namespace tongue::fem

@@ -99,9 +99,10 @@ class RigidContact : public ForceContribution {
   ContactReport report(const Vector& u) const;
 
   // The augmented Lagrangian's multipliers (ForceContribution): set to zero, and updated at u
-  // when a node is deeper than the tolerance there and updates are left this step.
+  // when a node is deeper than the tolerance there and updates are left this step (unmet when
+  // none are; held without a tolerance).
   void begin_step() override;
-  bool augment(const Vector& u) override;
+  Augmentation augment(const Vector& u) override;
 
   const std::vector<std::shared_ptr<const Obstacle>>& obstacles() const { return obstacles_; }
   const std::vector<int>& nodes() const { return nodes_; }

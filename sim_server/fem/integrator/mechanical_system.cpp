@@ -48,10 +48,14 @@ void MechanicalSystem::begin_step() {
   for (const auto& load : loads_) load->begin_step();
 }
 
-bool MechanicalSystem::augment(const Vector& u) {
-  bool again = false;
-  for (const auto& load : loads_) again = load->augment(u) || again;
-  return again;
+Augmentation MechanicalSystem::augment(const Vector& u) {
+  Augmentation all = Augmentation::held;
+  for (const auto& load : loads_) {
+    const Augmentation a = load->augment(u);
+    if (a == Augmentation::solve_again || (a == Augmentation::unmet && all == Augmentation::held))
+      all = a;
+  }
+  return all;
 }
 
 }  // namespace tongue::fem

@@ -32,9 +32,10 @@ class MechanicalSystem {
   // over the free dofs, in the loads' order.
   void rank_one_terms(const Vector& u, std::vector<RankOneTerm>& terms) const;
   // The loads' augmented-Lagrangian multipliers (ForceContribution::begin_step, augment): set to
-  // zero; updated at a converged u, true when some load asks for the step to be solved again.
+  // zero; updated at a converged u: solve_again when some load asks for it, else unmet when
+  // some load's constraint is violated beyond its tolerance, else held.
   void begin_step();
-  bool augment(const Vector& u);
+  Augmentation augment(const Vector& u);
 
  private:
   std::shared_ptr<const SolidModel> solid_;

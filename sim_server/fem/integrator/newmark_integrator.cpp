@@ -263,9 +263,12 @@ bool NewmarkIntegrator::advance(double dt, StepReport& report, int depth) {
   }
   report.add(newton);
   // A constraint held by an augmented Lagrangian (contact deeper than its tolerance): solved
-  // again from here with the multipliers updated, until it holds (the load decides when to stop
-  // asking).
-  while (newton.converged && system_.augment(problem.full(x))) {
+  // again from here with the multipliers updated, until it holds or the load has no updates
+  // left (then the step is accepted and says so).
+  while (newton.converged) {
+    const Augmentation constraint = system_.augment(problem.full(x));
+    if (constraint == Augmentation::unmet) report.constraint_unmet = true;
+    if (constraint != Augmentation::solve_again) break;
     ++report.augmentations;
     newton = newton_.solve(problem, x, &u_n);
     report.add(newton);

@@ -112,7 +112,7 @@ class NewmarkIntegrator : public TimeIntegrator {
   DynamicSettings settings_;
   SymmetricMatrix mass_;
   std::optional<SymmetricMatrix> damping_;
-  std::optional<Vector> damping_state_;  // the state K0 was taken at
+  std::optional<Vector> damping_state_;         // the state K0 was taken at
   std::unique_ptr<CholmodSolver> mass_solver_;  // M factorized, for initial accelerations
   std::optional<SymmetricMatrix> dynamic_matrix_;
   // M and c0 M + c1 C in node blocks, for the steps' products (node_block_matrix.hpp).

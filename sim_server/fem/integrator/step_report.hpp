@@ -29,6 +29,9 @@ struct StepReport {
   std::string message;  // why a cut happened or why the step failed; empty when clean
   int newton_solves = 0;
   int augmentations = 0;  // solves repeated with a load's multipliers updated (contact)
+  // Accepted with a load's constraint violated beyond its tolerance, its multipliers' updates
+  // spent (contact deeper than its penetration_tolerance after max_augmentations).
+  bool constraint_unmet = false;
 
   // Records a failed (sub)step of dt at time t [s]: with cuts left it counts a cut and says the
   // step is halved, and returns true (the caller retries in halves); otherwise says no cuts are

@@ -8,6 +8,7 @@ namespace tongue::fem {
 
 struct StepTotals {
   int steps = 0, iterations = 0, cuts = 0, factorizations = 0, residuals = 0, augmentations = 0;
+  int constraints_unmet = 0;  // steps accepted with a constraint beyond its tolerance
   double assembly = 0.0, factorization = 0.0, solve = 0.0;  // s
   double wall = 0.0;                                        // s
   double residual = 0.0;                                    // the last step's final residual [N]
@@ -17,6 +18,7 @@ struct StepTotals {
     iterations += r.iterations;
     cuts += r.cuts;
     augmentations += r.augmentations;
+    constraints_unmet += r.constraint_unmet ? 1 : 0;
     factorizations += r.factorizations;
     residuals += r.residual_evaluations;
     assembly += r.assembly_seconds;

@@ -87,7 +87,7 @@ TEST(RigidContact, MultipliersShiftThePenaltyAndKeepItsTangent) {
   const ShakenBox box;
   RigidContact contact = box.contact();
   const ContactReport plain = contact.report(box.u);
-  ASSERT_TRUE(contact.augment(box.u));  // nodes millimetres deep
+  ASSERT_EQ(contact.augment(box.u), Augmentation::solve_again);  // nodes millimetres deep
   const ContactReport augmented = contact.report(box.u);
   ASSERT_EQ(augmented.contacts.size(), plain.contacts.size());
   const ContactSettings& s = contact.settings();
@@ -307,31 +307,44 @@ TEST(RigidContact, DroppedBlockComesToRestOnThePlane) {
 
 // On a penalty a hundred times softer the same impact goes deeper than the tolerance: the steps
 // that do are solved again with the multipliers, and no converged step leaves a node deeper
-// (0.096 mm measured, 18 such solves); without them (tolerance 0) the strike goes 0.25 mm deep.
-// At rest the penalty alone holds the weight within the tolerance (98 Pa: 43 um).
+// (0.096 mm measured, 18 such solves); without them (tolerance 0) the strike goes 0.25 mm deep,
+// and with a tolerance but no updates allowed, the steps that leave a node deeper say so. At
+// rest the penalty alone holds the weight within the tolerance (98 Pa: 43 um).
 TEST(RigidContact, MultipliersHoldASofterPenaltysImpactWithinTheTolerance) {
-  for (const double tolerance : {1e-4, 0.0}) {
+  struct Case {
+    double tolerance;
+    int max_augmentations;
+  };
+  for (const Case c : {Case{1e-4, 4}, Case{0.0, 4}, Case{1e-4, 0}}) {
     ContactSettings settings;
     settings.penalty = 3e6;  // Pa/m
-    settings.penetration_tolerance = tolerance;
+    settings.penetration_tolerance = c.tolerance;
+    settings.max_augmentations = c.max_augmentations;
     DroppedBlock block(settings);
     NewmarkIntegrator integrator(block.system, damped(NewmarkParameters::bossak(0.6)));
     const int n = block.solid->num_dofs();
     integrator.initialize(Vector::Zero(n), Vector::Zero(n));
     double deepest = 0.0;
-    int augmentations = 0;
+    int augmentations = 0, unmet = 0;
     for (int step = 0; step < 800; ++step) {  // the softer bounce takes longer to die out
       const StepReport r = integrator.step(1e-3);
       ASSERT_TRUE(r.converged) << "step " << step << ": " << r.message;
       augmentations += r.augmentations;
-      deepest = std::max(deepest, block.contact->report(integrator.displacement()).max_penetration);
+      const double depth = block.contact->report(integrator.displacement()).max_penetration;
+      // A step is flagged exactly when it leaves a node deeper than a tolerance it has.
+      EXPECT_EQ(r.constraint_unmet, c.tolerance > 0.0 && depth > c.tolerance) << "step " << step;
+      unmet += r.constraint_unmet ? 1 : 0;
+      deepest = std::max(deepest, depth);
     }
-    if (tolerance > 0.0) {
+    if (c.tolerance > 0.0 && c.max_augmentations > 0) {
       EXPECT_GT(augmentations, 0);
-      EXPECT_LE(deepest, tolerance);
+      EXPECT_LE(deepest, c.tolerance);
     } else {
       EXPECT_EQ(augmentations, 0);
       EXPECT_GT(deepest, 2e-4);
+    }
+    if (c.tolerance > 0.0 && c.max_augmentations == 0) {
+      EXPECT_GT(unmet, 0);
     }
     block.expect_at_rest(integrator);
   }
