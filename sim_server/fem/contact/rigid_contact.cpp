@@ -62,10 +62,10 @@ void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
     const Vec3 x = rest_[i] + u.segment<3>(3 * nodes_[i]);
     at[i] = x;
     for (int o = 0; o < num_obstacles; ++o) {
-      Probe& probe = probes_[i * num_obstacles + o];
+      Probe& probe = probes_[pair(i, o)];
       if ((x - probe.at).norm() < probe.reach) continue;
       const Obstacle& obstacle = *obstacles_[o];
-      const double shift = shift_[i * num_obstacles + o];
+      const double shift = shift_[pair(i, o)];
       probe.at = x;
       probe.in_front = false;
       // Outside the bounding box a point is outside a closed obstacle, and at least that far
@@ -101,9 +101,8 @@ RigidContact::Penalty RigidContact::penalty(int i, double p) const {
 
 void RigidContact::add(const Vector& u, double /*load_factor*/, Vector& force,
                        SymmetricMatrix* stiffness) const {
-  const int num_obstacles = static_cast<int>(obstacles_.size());
   for_each_contact(u, [&](int i, int o, const SurfacePoint& s) {
-    const double shift = shift_[i * num_obstacles + o];
+    const double shift = shift_[pair(i, o)];
     const Penalty psi = penalty(i, shift - s.distance);
     force.segment<3>(3 * nodes_[i]) += psi.force * s.normal;
     if (stiffness != nullptr) {
@@ -124,16 +123,16 @@ void RigidContact::add(const Vector& u, double /*load_factor*/, Vector& force,
 void RigidContact::add_springs(const Vector& u, std::vector<NodeSpring>& springs) const {
   const int num_obstacles = static_cast<int>(obstacles_.size());
   for_each_contact(u, [&](int i, int o, const SurfacePoint& s) {
-    const double shift = shift_[i * num_obstacles + o];
+    const double shift = shift_[pair(i, o)];
     springs.push_back({nodes_[i], s.normal, penalty(i, shift - s.distance).stiffness, 0.0});
   });
   const std::lock_guard lock(probes_mutex_);
   for (int i = 0; i < static_cast<int>(nodes_.size()); ++i) {
     const Vec3 x = rest_[i] + u.segment<3>(3 * nodes_[i]);
     for (int o = 0; o < num_obstacles; ++o) {
-      const Probe& probe = probes_[i * num_obstacles + o];
+      const Probe& probe = probes_[pair(i, o)];
       if (!probe.in_front) continue;
-      const double gap = probe.phi + probe.normal.dot(x - probe.at) - shift_[i * num_obstacles + o];
+      const double gap = probe.phi + probe.normal.dot(x - probe.at) - shift_[pair(i, o)];
       if (gap > 0.0 && gap < kCandidateGap)
         springs.push_back({nodes_[i], probe.normal, node_penalty_[i], gap});
     }
@@ -143,9 +142,8 @@ void RigidContact::add_springs(const Vector& u, std::vector<NodeSpring>& springs
 ContactReport RigidContact::report(const Vector& u) const {
   ContactReport r;
   r.obstacle_force.assign(obstacles_.size(), Vec3::Zero());
-  const int num_obstacles = static_cast<int>(obstacles_.size());
   for_each_contact(u, [&](int i, int o, const SurfacePoint& s) {
-    const Penalty psi = penalty(i, shift_[i * num_obstacles + o] - s.distance);
+    const Penalty psi = penalty(i, shift_[pair(i, o)] - s.distance);
     const Vec3 f = psi.force * s.normal;
     r.contacts.push_back({nodes_[i], o, s.distance, f, s.point});
     r.obstacle_force[o] -= f;
@@ -172,13 +170,11 @@ void RigidContact::begin_step() {
 Augmentation RigidContact::augment(const Vector& u) {
   const double tolerance = settings_.penetration_tolerance;
   if (!(tolerance > 0.0)) return Augmentation::held;
-  const int num_obstacles = static_cast<int>(obstacles_.size());
   double deepest = 0.0;
   std::vector<double> next(shift_.size(), 0.0);  // zero for pairs out of contact
   for_each_contact(u, [&](int i, int o, const SurfacePoint& s) {
     deepest = std::max(deepest, -s.distance);
-    const int pair = i * num_obstacles + o;
-    next[pair] = std::max(0.0, shift_[pair] - s.distance - kTargetDepth * tolerance);
+    next[pair(i, o)] = std::max(0.0, shift_[pair(i, o)] - s.distance - kTargetDepth * tolerance);
   });
   if (!(deepest > tolerance)) return Augmentation::held;
   if (augmentations_ >= settings_.max_augmentations) return Augmentation::unmet;

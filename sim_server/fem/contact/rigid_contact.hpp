@@ -116,6 +116,10 @@ class RigidContact : public ForceContribution {
     double energy, force, stiffness;
   };
   Penalty penalty(int i, double p) const;
+  // The index of a (candidate, obstacle) pair in probes_ and shift_.
+  int pair(int candidate, int obstacle) const {
+    return candidate * static_cast<int>(obstacles_.size()) + obstacle;
+  }
   // The depth the multipliers hold a node at, over the tolerance.
   static constexpr double kTargetDepth = 0.5;
   // Calls visit(candidate index, obstacle index, surface point) for every contact at u: every
