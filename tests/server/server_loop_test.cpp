@@ -550,6 +550,29 @@ TEST_F(ServerLoopTest, StatesCarryTheContactWithTheObstacles) {
   EXPECT_EQ(f.doubles("/contact/max_penetration").back(), last.max_penetration);
 }
 
+// A step accepted with a node deeper than the contact's tolerance, its multipliers' updates spent
+// (none allowed here, and a tolerance of 0.1 um that the landing box's weight exceeds), is
+// warned of on stderr.
+TEST_F(ServerLoopTest, AStepLeftDeeperThanTheContactToleranceIsWarnedOf) {
+  constexpr std::int64_t kSteps = 15;
+  const std::string floor = write("floor.obj",
+                                  "v -50 -50 0\nv 50 -50 0\nv 50 50 0\nv -50 50 0\n"
+                                  "f 1 2 3\nf 1 3 4\n");
+  const std::string scene = std::string(tongue::testing::kBoxScene) +
+                            "obstacles:\n  - {name: floor, file: " + floor +
+                            ", length_scale: 0.001, rotate: [-90, 0, 0], translate: [0, -0.0005, "
+                            "0]}\ncontact: {penetration_tolerance: 1.0e-7, max_augmentations: 0}\n";
+  for (std::int64_t k = 1; k <= kSteps; ++k) bus_.send_activation(k, {"flexor"}, {0.0});
+  bus_.send_command("shutdown");
+  ::testing::internal::CaptureStderr();
+  const ExitStatus exit = run({}, scene.c_str());
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  ASSERT_EQ(status(exit), status(common::kExitOk)) << err;
+  ASSERT_GT(bus_.states.back().max_penetration, 1e-7) << "the box did not land";
+  const std::string warning = "deeper than the contact's penetration tolerance";
+  EXPECT_NE(err.find(warning), std::string::npos) << err;
+}
+
 TEST_F(ServerLoopTest, TheRunFileCarriesThePerStepTiming) {
   constexpr std::int64_t kSteps = 6;
   for (std::int64_t k = 1; k <= kSteps; ++k) bus_.send_activation(k, {"flexor"}, {0.3});
@@ -582,8 +605,8 @@ TEST_F(ServerLoopTest, TheRunFileCarriesThePerStepTiming) {
   double sum = 0.0;
   for (std::size_t k = 1; k < iterations.size(); ++k) sum += iterations[k];
   EXPECT_NEAR(std::stod(f.string_attribute("/", "timing_iterations")), sum / kSteps, 1e-5);
-  for (const char* name : {"timing_factorizations", "timing_assembly_ms",
-                           "timing_factorization_ms", "timing_solve_ms"}) {
+  for (const char* name : {"timing_factorizations", "timing_assembly_ms", "timing_factorization_ms",
+                           "timing_solve_ms"}) {
     const std::string text = f.string_attribute("/", name);
     ASSERT_NE(text, "<missing>") << name;
     EXPECT_GE(std::stod(text), 0.0) << name << " = " << text;
