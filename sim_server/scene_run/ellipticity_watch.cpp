@@ -27,6 +27,10 @@ std::optional<EllipticityFinding> EllipticityWatch::check(const fem::Vector& u, 
                                                           double time) {
   std::unique_lock lock(mutex_);
   std::optional<EllipticityFinding> found = wait_and_take(lock);
+  // After the run's one finding there is nothing left to look for: the worker is not woken
+  // (each wake-up is a system call and a second core's time, which a closed loop's controller
+  // can use).
+  if (found_loss_) return found;
   u_ = u;  // the same size every step: no reallocation
   step_ = step;
   time_ = time;
@@ -45,6 +49,7 @@ void EllipticityWatch::rearm() {
   std::unique_lock lock(mutex_);
   changed_.wait(lock, [&] { return !busy_; });
   monitor_.reset();
+  found_loss_ = false;
 }
 
 std::optional<EllipticityFinding> EllipticityWatch::wait_and_take(
@@ -72,7 +77,10 @@ void EllipticityWatch::run() {
     if (const auto loss = monitor_.first_loss(u_))
       found = EllipticityFinding{step_, time_, *loss, fem::describe(*loss, material_, numbering_)};
     lock.lock();
-    if (found) found_ = std::move(found);
+    if (found) {
+      found_ = std::move(found);
+      found_loss_ = true;
+    }
     busy_ = false;
     changed_.notify_one();
   }

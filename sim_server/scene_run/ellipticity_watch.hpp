@@ -37,7 +37,8 @@ class EllipticityWatch {
 
   // Waits for the check under way, then starts checking u (full displacement [m], the state of
   // `step` at `time` [s]); returns the finding of the check it waited for, if any (at most one
-  // finding per watch: first_loss reports once).
+  // finding per run: first_loss reports once, and once it has, no state is checked until
+  // rearm()).
   std::optional<EllipticityFinding> check(const fem::Vector& u, std::int64_t step, double time);
   // Waits for the check under way and returns its finding, if any.
   std::optional<EllipticityFinding> collect();
@@ -58,6 +59,7 @@ class EllipticityWatch {
   std::int64_t step_ = 0;
   double time_ = 0.0;
   bool busy_ = false;
+  bool found_loss_ = false;  // this run's finding made: nothing more to check
   bool stopping_ = false;
   std::optional<EllipticityFinding> found_;  // not yet collected
   std::thread worker_;
