@@ -83,6 +83,16 @@ class ServerLoopTest : public tongue::testing::TempDirTest {
     return out;
   }
 
+  // The box scene above a floor 0.5 mm below it (a square of 100 mm in an OBJ file, facing up).
+  std::string box_above_floor() const {
+    const std::string floor = write("floor.obj",
+                                    "v -50 -50 0\nv 50 -50 0\nv 50 50 0\nv -50 50 0\n"
+                                    "f 1 2 3\nf 1 3 4\n");
+    return std::string(tongue::testing::kBoxScene) +
+           "obstacles:\n  - {name: floor, file: " + floor +
+           ", length_scale: 0.001, rotate: [-90, 0, 0], translate: [0, -0.0005, 0]}\n";
+  }
+
   // The steps of the states published, in order.
   std::vector<std::int64_t> published_steps() const {
     std::vector<std::int64_t> steps;
@@ -503,13 +513,7 @@ TEST_F(ServerLoopTest, StatesCarryTheSelectedNodes) {
 // opposite), and the nodes in contact are those with a force in /contact/node_force.
 TEST_F(ServerLoopTest, StatesCarryTheContactWithTheObstacles) {
   constexpr std::int64_t kSteps = 15;  // 30 ms: a free fall of 0.5 mm takes about 10 ms
-  const std::string floor = write("floor.obj",
-                                  "v -50 -50 0\nv 50 -50 0\nv 50 50 0\nv -50 50 0\n"
-                                  "f 1 2 3\nf 1 3 4\n");
-  const std::string scene = std::string(tongue::testing::kBoxScene) +
-                            "obstacles:\n  - {name: floor, file: " + floor +
-                            ", length_scale: 0.001, rotate: [-90, 0, 0], translate: [0, -0.0005, "
-                            "0]}\n";
+  const std::string scene = box_above_floor();
   for (std::int64_t k = 1; k <= kSteps; ++k) bus_.send_activation(k, {"flexor"}, {0.0});
   bus_.send_command("shutdown");
   ServerOptions options = with_run_file();
@@ -555,13 +559,8 @@ TEST_F(ServerLoopTest, StatesCarryTheContactWithTheObstacles) {
 // warned of on stderr.
 TEST_F(ServerLoopTest, AStepLeftDeeperThanTheContactToleranceIsWarnedOf) {
   constexpr std::int64_t kSteps = 15;
-  const std::string floor = write("floor.obj",
-                                  "v -50 -50 0\nv 50 -50 0\nv 50 50 0\nv -50 50 0\n"
-                                  "f 1 2 3\nf 1 3 4\n");
-  const std::string scene = std::string(tongue::testing::kBoxScene) +
-                            "obstacles:\n  - {name: floor, file: " + floor +
-                            ", length_scale: 0.001, rotate: [-90, 0, 0], translate: [0, -0.0005, "
-                            "0]}\ncontact: {penetration_tolerance: 1.0e-7, max_augmentations: 0}\n";
+  const std::string scene =
+      box_above_floor() + "contact: {penetration_tolerance: 1.0e-7, max_augmentations: 0}\n";
   for (std::int64_t k = 1; k <= kSteps; ++k) bus_.send_activation(k, {"flexor"}, {0.0});
   bus_.send_command("shutdown");
   ::testing::internal::CaptureStderr();
