@@ -75,12 +75,12 @@ ReducedIntegrator::ReducedIntegrator(const fem::MechanicalSystem& system, Reduce
   }
   phi_free_.resize(dofs.num_free(), phi_.cols());
   for (Eigen::Index j = 0; j < phi_.cols(); ++j) phi_free_.col(j) = dofs.gather_free(phi_.col(j));
-  phi_rows_ = phi_free_;
+  projector_ = GalerkinProjector(*solid.pattern(), dofs, phi_);
   weights_.assign(static_cast<std::size_t>(solid.mesh().num_elements()), 0.0);
   for (std::size_t j = 0; j < basis.sample_elements.size(); ++j)
     weights_.at(static_cast<std::size_t>(basis.sample_elements[j])) =
         basis.sample_weights[static_cast<Eigen::Index>(j)];
-  mass_r_ = project(mass_);
+  mass_r_ = projector_.project(mass_);
   // The sample's internal force differs from the mesh's by a little everywhere, also at the
   // origin, which is the full model's equilibrium: the difference there is added back, so that
   // the reduced model rests where the full one does.
@@ -92,20 +92,6 @@ ReducedIntegrator::ReducedIntegrator(const fem::MechanicalSystem& system, Reduce
   const int k = num_modes();
   q_ = qd_ = qdd_ = fem::Vector::Zero(k);
   reconstruct();
-}
-
-Eigen::MatrixXd ReducedIntegrator::project(const fem::SymmetricMatrix& a) const {
-  // A Phi in one pass over A's entries, then Phi^T (A Phi) by OpenBLAS.
-  fem::SymmetricMatrix::RowMajorMatrix product =
-      fem::SymmetricMatrix::RowMajorMatrix::Zero(phi_free_.rows(), phi_free_.cols());
-  a.multiply_add(phi_rows_, product);
-  const int n = static_cast<int>(phi_free_.rows()), k = static_cast<int>(phi_free_.cols());
-  Eigen::MatrixXd p(k, k);
-  // The row-major n x k product is, read column-major, its k x n transpose: both operands
-  // are transposed.
-  cblas_dgemm(CblasColMajor, CblasTrans, CblasTrans, k, k, n, 1.0, phi_free_.data(), n,
-              product.data(), k, 0.0, p.data(), k);
-  return 0.5 * (p + p.transpose());
 }
 
 void ReducedIntegrator::reconstruct() {
@@ -158,7 +144,7 @@ void ReducedIntegrator::initialize(const fem::Vector& u0, const fem::Vector& v0,
     fem::Vector f;
     if (!solid.assemble(u_, f, &*stiffness0_).ok)
       throw std::runtime_error("initial state has an inverted element");
-    damping_r_ += d.stiffness_coefficient * project(*stiffness0_);
+    damping_r_ += d.stiffness_coefficient * projector_.project(*stiffness0_);
   }
   damping_state_ = u_;
   fem::Vector f;
@@ -177,7 +163,7 @@ bool ReducedIntegrator::form_tangent(const fem::Vector& q, double dt) {
   fem::SymmetricMatrix K(system_.solid().pattern());
   fem::Vector f;
   if (!reduced_force(displacement_of(q), f, &K, nullptr)) return false;
-  tangent_.compute(project(K) + mass_r_ / (p.beta * dt * dt) +
+  tangent_.compute(projector_.project(K) + mass_r_ / (p.beta * dt * dt) +
                    damping_r_ * (p.gamma / (p.beta * dt)));
   if (tangent_.info() != Eigen::Success || !tangent_.isPositive()) return false;
   tangent_dt_ = dt;

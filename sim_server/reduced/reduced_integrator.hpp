@@ -21,6 +21,7 @@
 #include "fem/integrator/step_report.hpp"
 #include "fem/integrator/time_integrator.hpp"
 #include "fem/solver/cholmod_solver.hpp"
+#include "reduced/galerkin_projector.hpp"
 #include "reduced/reduced_basis_file.hpp"
 
 namespace tongue::reduced {
@@ -70,8 +71,6 @@ class ReducedIntegrator : public fem::TimeIntegrator {
   // Phi^T r(u) with the sample's weights, u the full displacement; false at an inverted element.
   bool reduced_force(const fem::Vector& u, fem::Vector& f, fem::SymmetricMatrix* K,
                      double* load_norm) const;
-  // Phi_f^T A Phi_f for a matrix over the free dofs.
-  Eigen::MatrixXd project(const fem::SymmetricMatrix& a) const;
   bool form_tangent(const fem::Vector& q, double dt);
   void reconstruct();
 
@@ -80,9 +79,9 @@ class ReducedIntegrator : public fem::TimeIntegrator {
   Eigen::MatrixXd phi_;  // all dofs x k
   fem::Vector origin_;   // the basis' origin, full vector [m]
   int num_sampled_ = 0;
-  Eigen::MatrixXd phi_free_;                       // free dofs x k
-  fem::SymmetricMatrix::RowMajorMatrix phi_rows_;  // the same, row-major (project())
-  std::vector<double> weights_;                    // per element: the sample's weight, 0 elsewhere
+  Eigen::MatrixXd phi_free_;       // free dofs x k
+  GalerkinProjector projector_;    // Phi^T A Phi
+  std::vector<double> weights_;    // per element: the sample's weight, 0 elsewhere
   fem::Vector origin_correction_;  // Phi^T (f_int - f_int of the sample) at the origin
   fem::SymmetricMatrix mass_;
   Eigen::MatrixXd mass_r_, damping_r_;
