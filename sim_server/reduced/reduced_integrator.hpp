@@ -51,8 +51,8 @@ class ReducedIntegrator : public fem::TimeIntegrator {
   // correction the full model's Newton method would make from there, S^-1 R with S the last
   // step's tangent at the origin (c0 M + c1 C + K0), as its largest nodal component [m]: zero
   // for a state of the full model, and what the basis cannot represent otherwise. Costs one
-  // full residual and one solve (S is factorized at the first call and when dt changes); 0
-  // before the first step.
+  // full residual and one solve (S is factorized, in single precision, at the first call and
+  // when dt changes); 0 before the first step.
   double full_model_correction();
 
   // Full vectors, reconstructed from the reduced state.
