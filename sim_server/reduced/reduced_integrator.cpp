@@ -24,6 +24,9 @@ constexpr double kPrescribedRoundOff = 1e-10;
 // and the factor is re-formed when the corrections contract by less than this ratio.
 constexpr double kFirstContraction = 0.5;
 constexpr double kReformContraction = 0.5;
+// A BFGS pair is used when the residual's change along the correction is at least this share of
+// what the Newton matrix predicts (update_tangent).
+constexpr double kMinCurvature = 1e-3;
 
 // y = beta y + A x, or A^T x, by OpenBLAS: it picks its kernels for the CPU when it loads, where
 // Eigen's products here are compiled for the vector width every x86-64 has (2 doubles). The
@@ -163,12 +166,29 @@ bool ReducedIntegrator::form_tangent(const fem::Vector& q, double dt) {
   fem::SymmetricMatrix K(system_.solid().pattern());
   fem::Vector f;
   if (!reduced_force(displacement_of(q), f, &K, nullptr)) return false;
-  tangent_.compute(projector_.project(K) + mass_r_ / (p.beta * dt * dt) +
-                   damping_r_ * (p.gamma / (p.beta * dt)));
+  newton_matrix_ =
+      projector_.project(K) + mass_r_ / (p.beta * dt * dt) + damping_r_ * (p.gamma / (p.beta * dt));
+  tangent_.compute(newton_matrix_);
   if (tangent_.info() != Eigen::Success || !tangent_.isPositive()) return false;
   tangent_dt_ = dt;
   contraction_ = -1.0;
   return true;
+}
+
+void ReducedIntegrator::update_tangent(const fem::Vector& s, const fem::Vector& y) {
+  // BFGS (Matthies & Strang 1979; Nocedal & Wright 2006, eq. 6.19) on the dense matrix:
+  // J + y y^T / y^T s - (J s)(J s)^T / s^T J s, which is what the residual's change along s
+  // says of the tangent, and positive definite when J is and y^T s > 0. A pair with little
+  // curvature along s (y^T s at most kMinCurvature s^T J s) is skipped: it would make J nearly
+  // singular there.
+  const fem::Vector js = newton_matrix_ * s;
+  const double sjs = s.dot(js), ys = y.dot(s);
+  if (!(sjs > 0.0) || !(ys > kMinCurvature * sjs) || !y.allFinite()) return;
+  Eigen::MatrixXd updated = newton_matrix_ + y * y.transpose() / ys - js * js.transpose() / sjs;
+  Eigen::LDLT<Eigen::MatrixXd> factor(updated);
+  if (factor.info() != Eigen::Success || !factor.isPositive()) return;
+  newton_matrix_ = std::move(updated);
+  tangent_ = std::move(factor);
 }
 
 fem::StepReport ReducedIntegrator::prepare(double dt) {
@@ -224,7 +244,7 @@ bool ReducedIntegrator::advance(double dt, fem::StepReport& report, int depth) {
   // origin + Phi x, kept along with x from the state's u and v and the corrections' Phi dq,
   // which the error estimate takes anyway: one product with the basis an iteration, not two.
   fem::Vector u = u_ + dt * v_;
-  fem::Vector f, r;
+  fem::Vector f, r, last_r, dq;
   std::string failure;
   double previous = 0.0, load_norm = 0.0;
   bool converged = false;
@@ -248,7 +268,12 @@ bool ReducedIntegrator::advance(double dt, fem::StepReport& report, int depth) {
       }
     }
     newton.final_residual = r.norm();
-    if (tangent_dt_ != dt || (k > 0 && contraction_ > kReformContraction)) {
+    // With BFGS updates, the first pair of a step updates the matrix rather than a contraction
+    // carried over from earlier steps re-forming it: it is re-formed when a correction made
+    // with the updated matrix still contracts too slowly.
+    const bool updates = ns.quasi_newton_updates > 0;
+    if (k > 0 && updates && tangent_dt_ == dt) update_tangent(dq, r - last_r);
+    if (tangent_dt_ != dt || (k > (updates ? 1 : 0) && contraction_ > kReformContraction)) {
       started = Clock::now();
       if (!form_tangent(x, dt)) {
         failure = "the reduced tangent is not positive definite";
@@ -259,7 +284,8 @@ bool ReducedIntegrator::advance(double dt, fem::StepReport& report, int depth) {
       previous = 0.0;
     }
     started = Clock::now();
-    const fem::Vector dq = tangent_.solve(-r);
+    dq = tangent_.solve(-r);
+    last_r = r;
     newton.solve_seconds += seconds_since(started);
     newton.iterations = k + 1;
     if (!dq.allFinite()) {

@@ -5,10 +5,13 @@
 //   C_r = alpha M_r + beta_R Phi^T K0 Phi,
 // stepped by the same Newmark rule and solved by Newton on the k reduced coordinates with a
 // dense factor of the reduced tangent, reused across iterations and steps as the full solver
-// does. The solid's internal force is integrated over the basis' sample of elements with their
-// weights (energy-conserving sampling and weighting: Farhat, Avery, Chapman & Cortial 2014,
-// Int. J. Numer. Meth. Eng. 98); the loads, the muscles' fibre forces and their active
-// stiffening among them, are evaluated on the whole reconstructed displacement and projected
+// does; with the scene's quasi_newton_updates > 0 (the dynamic default) each correction and the
+// residual's change over it update the dense matrix by BFGS, so that it is formed again (an
+// assembly and a projection, about 20 reduced residuals on the tongue) only when the updated
+// matrix still converges slowly. The solid's internal force is integrated over the basis' sample of
+// elements with their weights (energy-conserving sampling and weighting: Farhat, Avery, Chapman &
+// Cortial 2014, Int. J. Numer. Meth. Eng. 98); the loads, the muscles' fibre forces and their
+// active stiffening among them, are evaluated on the whole reconstructed displacement and projected
 // exactly; the sample's force is corrected by a constant, its difference from the mesh's at the
 // origin, so that the origin stays an equilibrium. The modes are zero at the prescribed dofs (every
 // snapshot is), so u keeps the origin's prescribed values.
@@ -72,6 +75,10 @@ class ReducedIntegrator : public fem::TimeIntegrator {
   bool reduced_force(const fem::Vector& u, fem::Vector& f, fem::SymmetricMatrix* K,
                      double* load_norm) const;
   bool form_tangent(const fem::Vector& q, double dt);
+  // The Newton matrix and its factor updated by the BFGS pair (s: a correction, y: the
+  // residual's change over it); left as they are when the pair would not keep them positive
+  // definite.
+  void update_tangent(const fem::Vector& s, const fem::Vector& y);
   void reconstruct();
 
   const fem::MechanicalSystem& system_;
@@ -89,8 +96,9 @@ class ReducedIntegrator : public fem::TimeIntegrator {
   std::unique_ptr<fem::CholmodSolver> check_solver_;  // S, for full_model_correction
   fem::Vector damping_state_;                         // the state K0 was taken at
   double check_dt_ = 0.0, last_dt_ = 0.0;
-  Eigen::LDLT<Eigen::MatrixXd> tangent_;
-  double tangent_dt_ = 0.0;  // 0: no factor
+  Eigen::MatrixXd newton_matrix_;         // the reduced tangent of the step, BFGS-updated
+  Eigen::LDLT<Eigen::MatrixXd> tangent_;  // its factor
+  double tangent_dt_ = 0.0;               // 0: no factor
   double contraction_ = -1.0;
   fem::Vector q_, qd_, qdd_;
   fem::Vector u_, v_, a_;
