@@ -20,10 +20,11 @@ double seconds_since(Clock::time_point start) {
 constexpr double kDefaultTolerance = 1e-8;
 // Largest entry of a unit mode at a dof no snapshot moves that counts as round-off.
 constexpr double kPrescribedRoundOff = 1e-10;
-// As the full solver: the first correction of a step is judged with at least this contraction,
-// and the factor is re-formed when the corrections contract by less than this ratio.
+// As the full solver: the first correction of a step is judged with at least this contraction.
+// The factor is re-formed when the corrections contract by less than the scene's reform_ratio
+// (the full solver compares the residuals' norms with it; here the corrections', which the
+// error estimate takes anyway).
 constexpr double kFirstContraction = 0.5;
-constexpr double kReformContraction = 0.5;
 // A BFGS pair is used when the residual's change along the correction is at least this share of
 // what the Newton matrix predicts (update_tangent).
 constexpr double kMinCurvature = 1e-3;
@@ -273,7 +274,7 @@ bool ReducedIntegrator::advance(double dt, fem::StepReport& report, int depth) {
     // with the updated matrix still contracts too slowly.
     const bool updates = ns.quasi_newton_updates > 0;
     if (k > 0 && updates && tangent_dt_ == dt) update_tangent(dq, r - last_r);
-    if (tangent_dt_ != dt || (k > (updates ? 1 : 0) && contraction_ > kReformContraction)) {
+    if (tangent_dt_ != dt || (k > (updates ? 1 : 0) && contraction_ > ns.reform_ratio)) {
       started = Clock::now();
       if (!form_tangent(x, dt)) {
         failure = "the reduced tangent is not positive definite";
