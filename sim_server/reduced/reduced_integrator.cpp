@@ -248,12 +248,21 @@ bool ReducedIntegrator::advance(double dt, fem::StepReport& report, int depth) {
   fem::Vector f, r, last_r, dq;
   std::string failure;
   double previous = 0.0, load_norm = 0.0;
-  bool converged = false;
+  bool converged = false, predicted = true;
   fem::NewtonReport newton;
   for (int k = 0; k < ns.max_iterations && failure.empty(); ++k) {
     auto started = Clock::now();
     ++newton.residual_evaluations;
     if (!reduced_force(u, f, nullptr, &load_norm)) {
+      if (k == 0 && predicted) {
+        // As in the full model: a prediction that inverts an element (a fast motion over a
+        // long step) gives way to the last state.
+        x = q_;
+        u = u_;
+        predicted = false;
+        --k;
+        continue;
+      }
       failure = "an element inverted";
       break;
     }
