@@ -185,9 +185,7 @@ ReducedBasis every_mode_and_element(const Cantilever& c) {
 }
 
 TEST(ReducedIntegrator, WithEveryModeAndElementItIsTheFullModel) {
-  // A basis of every free dof (a rotation of the full model's unknowns) and every element at
-  // weight 1: the reduced equations are the full ones in other coordinates. Both solved to
-  // 1e-13 m by full Newton, the runs agree to what the solves leave.
+  // Both solved to 1e-13 m by full Newton, the runs agree to what the solves leave.
   Cantilever c;
   c.settings.newton.max_tangent_reuse = 0;
   c.settings.newton.displacement_tolerance = 1e-13;  // m
