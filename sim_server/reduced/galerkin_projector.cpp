@@ -55,21 +55,11 @@ GalerkinProjector::GalerkinProjector(const fem::SparsityPattern& pattern, const 
   const std::vector<int>& free = dofs.free_dofs();
 
   // Each node's row of blocks: the nodes the stored entries couple it to, in either triangle.
-  std::vector<std::vector<int>> neighbours(num_nodes);
-  for (int col = 0; col < pattern.size; ++col) {
-    for (int k = pattern.column_start[col]; k < pattern.column_start[col + 1]; ++k) {
-      const int a = free[pattern.row_index[k]] / 3, b = free[col] / 3;
-      neighbours[a].push_back(b);
-      neighbours[b].push_back(a);
-    }
-  }
+  const std::vector<std::vector<int>> coupled = fem::coupled_nodes(pattern, dofs);
   row_start_.assign(num_nodes + 1, 0);
   for (int a = 0; a < num_nodes; ++a) {
-    std::vector<int>& n = neighbours[a];
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
-    row_start_[a + 1] = row_start_[a] + static_cast<int>(n.size());
-    column_node_.insert(column_node_.end(), n.begin(), n.end());
+    column_node_.insert(column_node_.end(), coupled[a].begin(), coupled[a].end());
+    row_start_[a + 1] = static_cast<int>(column_node_.size());
   }
   const auto entry = [&](int dof_row, int dof_col) {
     const int a = dof_row / 3, b = dof_col / 3;

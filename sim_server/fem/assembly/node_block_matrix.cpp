@@ -12,22 +12,16 @@ NodeBlockMatrix::NodeBlockMatrix(const SymmetricMatrix& matrix, const DofMap& do
   const int num_nodes = dofs.num_dofs() / 3;
   const std::vector<int>& full = dofs.free_dofs();
 
-  // The node pairs the stored entries couple, each once: (a, b) with a <= b.
-  std::vector<std::vector<int>> neighbours(num_nodes);
-  for (int col = 0; col < p.size; ++col) {
-    for (int k = p.column_start[col]; k < p.column_start[col + 1]; ++k) {
-      const int a = full[p.row_index[k]] / 3, b = full[col] / 3;
-      neighbours[std::min(a, b)].push_back(std::max(a, b));
-    }
-  }
+  // Each node's row: the diagonal block, zero or not, then the nodes after it that it is
+  // coupled to (the upper triangle of blocks).
+  const std::vector<std::vector<int>> coupled = coupled_nodes(p, dofs);
   row_start_.assign(num_nodes + 1, 0);
   for (int a = 0; a < num_nodes; ++a) {
-    auto& n = neighbours[a];
-    n.push_back(a);  // every row starts with its diagonal block, zero or not
-    std::sort(n.begin(), n.end());
-    n.erase(std::unique(n.begin(), n.end()), n.end());
-    row_start_[a + 1] = row_start_[a] + static_cast<int>(n.size());
-    column_node_.insert(column_node_.end(), n.begin(), n.end());
+    const std::vector<int>& n = coupled[a];
+    column_node_.push_back(a);
+    for (auto it = std::upper_bound(n.begin(), n.end(), a); it != n.end(); ++it)
+      column_node_.push_back(*it);
+    row_start_[a + 1] = static_cast<int>(column_node_.size());
   }
   blocks_.assign(9 * column_node_.size(), 0.0);
 

@@ -37,6 +37,23 @@ void add_couplings(const std::array<int, N>& free, std::vector<std::vector<int>>
 
 }  // namespace
 
+std::vector<std::vector<int>> coupled_nodes(const SparsityPattern& pattern, const DofMap& dofs) {
+  const std::vector<int>& free = dofs.free_dofs();
+  std::vector<std::vector<int>> nodes(static_cast<std::size_t>(dofs.num_dofs() / 3));
+  for (int col = 0; col < pattern.size; ++col) {
+    for (int k = pattern.column_start[col]; k < pattern.column_start[col + 1]; ++k) {
+      const int a = free[pattern.row_index[k]] / 3, b = free[col] / 3;
+      nodes[a].push_back(b);
+      nodes[b].push_back(a);
+    }
+  }
+  for (std::vector<int>& n : nodes) {
+    std::sort(n.begin(), n.end());
+    n.erase(std::unique(n.begin(), n.end()), n.end());
+  }
+  return nodes;
+}
+
 AssemblyPattern build_assembly_pattern(const Mesh& mesh, const DofMap& dofs,
                                        const std::vector<std::pair<int, int>>& extra_node_pairs) {
   const int n = dofs.num_free();

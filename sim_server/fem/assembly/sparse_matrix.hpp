@@ -35,6 +35,11 @@ AssemblyPattern build_assembly_pattern(
     const Mesh& mesh, const DofMap& dofs,
     const std::vector<std::pair<int, int>>& extra_node_pairs = {});
 
+// For each node, the nodes its free dofs are coupled to by the pattern's entries (in either
+// triangle, itself included when it has a stored entry), ascending and without repeats: the
+// rows of a matrix on the pattern taken in 3 x 3 node blocks.
+std::vector<std::vector<int>> coupled_nodes(const SparsityPattern& pattern, const DofMap& dofs);
+
 class SymmetricMatrix {
  public:
   explicit SymmetricMatrix(std::shared_ptr<const SparsityPattern> pattern);
