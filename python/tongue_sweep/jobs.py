@@ -9,6 +9,12 @@ from .experiment_job import run_experiment
 from .simulation_job import run_simulation
 
 
+def execute_batch(batch, port=None, runner=None):
+    """execute() for each (params, logs_dir) of batch in turn, on one port: one dask task for
+    several short runs, whose own cost (a few ms each way) would otherwise weigh on them."""
+    return [execute(params, port, logs_dir, runner) for params, logs_dir in batch]
+
+
 def execute(params, port=None, logs_dir=None, runner=None):
     """The results part of a run's row (status, error, figures, worker, wall_s)."""
     start = time.perf_counter()

@@ -57,6 +57,18 @@ def test_a_sweep_gives_the_figures_of_the_runs_done_in_process(client, tmp_path)
         assert a.readline() == b.readline()  # the same columns
 
 
+def test_short_runs_share_tasks_and_keep_their_own_rows(client, tmp_path):
+    # Runs of a few ms each: after the first wave, one run a task, the next tasks take several.
+    runs = make_runs([{"scene": SG_3N, "steps": 2, "levels.SG": round(0.01 * (i + 1), 6)}
+                      for i in range(16)])
+    sweep = Sweep(tmp_path / "cluster", client)
+    rows = sweep.run(runs)
+    assert sweep.tasks < len(runs)
+    # Each row is its own run's (the levels differ, so do the figures), as done one by one.
+    assert repeatable(rows) == repeatable(Sweep(tmp_path / "sequential", None).run(runs))
+    assert len({r["tip_dy_m"] for r in rows}) == len(runs)
+
+
 def test_a_sweep_resumes_after_a_crash_and_skips_what_is_done(client, tmp_path):
     runs = small_runs()
     whole = Sweep(tmp_path / "whole", client).run(runs)
