@@ -46,8 +46,11 @@ constexpr Eigen::Index kSamplingSnapshots = 200;
 
 struct Options {
   std::string scene_path, output, snapshots;
-  double energy = 0.9999;
-  double sampling = 0.01;
+  // With 60 random mixes in the training, 0.9997 of the energy (63 modes on the tongue) and a
+  // sample within 0.1 step as fast as 0.9999 and 0.01 did with 6 mixes (49 modes, 478 elements)
+  // at half the error on held-out runs (docs/reduced.md, "The defaults").
+  double energy = 0.9997;
+  double sampling = 0.1;
   reduced::TrainingOptions training;
 };
 
@@ -59,13 +62,13 @@ void print_usage(std::FILE* to) {
                "  --output FILE     the reduced basis to write\n"
                "  --snapshots FILE  also write the training snapshots\n"
                "  --energy F        fraction of the snapshots' energy the modes hold (default "
-               "0.9999)\n"
+               "0.9997)\n"
                "  --duration S      each training sequence [s] (default 0.3)\n"
                "  --pairs N         sequences with two muscle groups together (default 12)\n"
-               "  --mixes N         sequences with every group on at random (default 6)\n"
+               "  --mixes N         sequences with every group on at random (default 60)\n"
                "  --seed N          the training levels' random seed (default 1)\n"
                "  --sampling F      relative misfit of the sampled elements' reduced forces\n"
-               "                    (default 0.01)\n");
+               "                    (default 0.1)\n");
 }
 
 std::optional<Options> parse_arguments(int argc, char** argv) {
