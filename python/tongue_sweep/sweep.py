@@ -90,10 +90,15 @@ class Sweep:
         def submit_what_can_go():
             # Two tasks per worker thread: one running, one waiting its turn on the worker.
             while queue and len(in_flight) < 2 * slots:
+                # An experiment needs a free port; while every port is in use, the runs queued
+                # behind it that need none go first.
+                first = next((i for i, r in enumerate(queue)
+                              if r.kind != "experiment" or ports.free), None)
+                if first is None:
+                    return
+                queue.rotate(-first)
                 kind = queue[0].kind
                 port = ports.take() if kind == "experiment" else None
-                if kind == "experiment" and port is None:
-                    return  # every port is in use: wait for one
                 size = self._batch_size(len(queue), slots, walls)
                 batch = []
                 while queue and len(batch) < size and queue[0].kind == kind:

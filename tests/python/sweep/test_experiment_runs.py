@@ -35,3 +35,23 @@ def test_a_plan_entry_that_is_not_there_fails_its_run(client, runner, tmp_path):
     runs = make_runs([{"experiment": AI, "duration_s": 0.1, "plan.delta_lambda_mm.XX.0": -5}])
     row = Sweep(tmp_path, client, ports=[7987], runner=runner).run(runs)[0]
     assert row["status"] == "failed" and "delta_lambda_mm.XX.0" in row["error"]
+
+
+def test_runs_that_need_no_port_go_while_the_experiments_wait_for_one(client, runner, tmp_path):
+    # Two experiments on one port, listed before three simulation runs: the second experiment
+    # waits for the port, the simulations do not wait for it, and every row is its run's.
+    from conftest import SG_3N
+    runs = make_runs([{"experiment": AI, "duration_s": 0.05, "plan.delta_lambda_mm.GGa.0": v}
+                      for v in (-10, 0)] +
+                     [{"scene": SG_3N, "steps": 3, "levels.SG": s} for s in (0.05, 0.1, 0.15)])
+    arrived = []
+    rows = Sweep(tmp_path / "mixed", client, ports=[7987], runner=runner,
+                 on_row=lambda row, done, total: arrived.append(row["kind"])).run(runs)
+    assert [r["status"] for r in rows] == ["ok"] * 5, [r["error"] for r in rows]
+    # A simulation of three steps on the idle worker ends long before the first experiment (a
+    # run_experiment of three processes): had the simulations waited behind the experiment for
+    # the port, none would come back first.
+    assert arrived[0] == "simulation", arrived
+    assert [r["port"] for r in rows[:2]] == [7987, 7987]
+    alone = Sweep(tmp_path / "alone", None).run(runs[2:])
+    assert [r["tip_dy_m"] for r in rows[2:]] == [r["tip_dy_m"] for r in alone]
