@@ -1,8 +1,8 @@
 """The sweep: the runs not yet done, on a dask cluster (or in this process), each row written to
 the output folder as its run (or its task of several short runs) comes back, then the table."""
+import bisect
 import math
 import os
-import statistics
 from collections import deque
 
 from .jobs import execute, execute_batch
@@ -14,6 +14,19 @@ DEFAULT_PORTS = range(7985, 7995)
 # task's own cost stays small beside it (no-op tasks on a local cluster of two workers took 2-3
 # ms of wall time each on a 2-core machine: 5 % of a 50 ms run).
 TASK_TARGET_S = 0.25
+
+
+def runs_per_task(queued, slots, walls):
+    """How many runs the next task takes: one until a run's wall time is known, then enough to
+    last about TASK_TARGET_S, but never more than a share of what is left that keeps every worker
+    busy to the end (guided self-scheduling: shares shrink as the queue does). `walls`: the wall
+    times of the runs done so far [s], sorted."""
+    if not walls:
+        return 1
+    n = len(walls)
+    median = walls[n // 2] if n % 2 else 0.5 * (walls[n // 2 - 1] + walls[n // 2])
+    wanted = math.ceil(TASK_TARGET_S / max(median, 1e-3))
+    return max(1, min(wanted, math.ceil(queued / (2 * slots))))
 
 
 class Sweep:
@@ -69,15 +82,6 @@ class Sweep:
                 write_hdf5(os.path.join(self.store.out_dir, "results.h5"), runs, done)
         return [done[r.key] for r in runs]
 
-    def _batch_size(self, queued, slots, walls):
-        """How many runs the next task takes: one until a run's wall time is known, then enough
-        to last about TASK_TARGET_S, but never more than a share of what is left that keeps
-        every worker busy to the end (guided self-scheduling: shares shrink as the queue does)."""
-        if not walls:
-            return 1
-        wanted = math.ceil(TASK_TARGET_S / max(statistics.median(walls), 1e-3))
-        return max(1, min(wanted, math.ceil(queued / (2 * slots))))
-
     def _run_on_cluster(self, pending, done, counter):
         from distributed import as_completed
         ports = PortPool(self.ports)
@@ -85,7 +89,7 @@ class Sweep:
         in_flight = {}
         completed = as_completed()
         slots = max(1, sum(self.client.nthreads().values()))
-        walls = []  # of the runs done so far, s
+        walls = []  # of the runs done so far [s], kept sorted
 
         def submit_what_can_go():
             # Two tasks per worker thread: one running, one waiting its turn on the worker.
@@ -99,7 +103,7 @@ class Sweep:
                 queue.rotate(-first)
                 kind = queue[0].kind
                 port = ports.take() if kind == "experiment" else None
-                size = self._batch_size(len(queue), slots, walls)
+                size = runs_per_task(len(queue), slots, walls)
                 batch = []
                 while queue and len(batch) < size and queue[0].kind == kind:
                     batch.append(queue.popleft())
@@ -122,7 +126,7 @@ class Sweep:
                 ports.give_back(port)
                 for run, result in zip(batch, results):
                     if "wall_s" in result:
-                        walls.append(result["wall_s"])
+                        bisect.insort(walls, result["wall_s"])
                     done[run.key] = self._finish(run, result, counter)
                 submit_what_can_go()
         finally:
