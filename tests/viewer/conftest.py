@@ -67,8 +67,13 @@ def project_path(*parts):
 
 
 def lcm_url(port):
+    """The project's default bus URL on `port`, with its 4 MB receive buffer. The kernel's
+    default (208 KiB) holds only a handful of the tongue's 24 kB states: a viewer starved of CPU
+    beside the browser can fall that far behind a lock-step run of 2 ms steps, and the states
+    that arrive then are dropped, the last one among them (one CI run waited 300 s for a page to
+    show step 30)."""
     assert 7870 <= port <= 7879, "the viewer tests own udpm ports 7870-7879 only"
-    return f"udpm://239.255.76.67:{port}?ttl=0"
+    return f"udpm://239.255.76.67:{port}?ttl=0&recv_buf_size=4194304"
 
 
 def wait_until(condition, timeout_s, what):
