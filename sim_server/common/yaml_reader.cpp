@@ -124,6 +124,16 @@ int YamlReader::at_least(const YAML::Node& n, const std::string& path, int lo) c
   return v;
 }
 
+int YamlReader::between(const YAML::Node& n, const std::string& path, int lo, int hi) const {
+  const int v = integer(n, path);
+  if (v < lo || v > hi)
+    fail(path,
+         "must be from " + std::to_string(lo) + " to " + std::to_string(hi) + ", got " +
+             std::to_string(v),
+         n);
+  return v;
+}
+
 bool YamlReader::boolean(const YAML::Node& n, const std::string& path) const {
   bool v = false;
   if (!n.IsScalar() || !YAML::convert<bool>::decode(n, v))

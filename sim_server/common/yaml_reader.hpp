@@ -65,6 +65,7 @@ class YamlReader {
   double non_negative(const YAML::Node& n, const std::string& path, const std::string& unit) const;
   int integer(const YAML::Node& n, const std::string& path) const;
   int at_least(const YAML::Node& n, const std::string& path, int lo) const;
+  int between(const YAML::Node& n, const std::string& path, int lo, int hi) const;  // inclusive
   bool boolean(const YAML::Node& n, const std::string& path) const;
   std::string text(const YAML::Node& n, const std::string& path) const;  // a scalar
   // A list of at least min_count finite numbers, or of scalars.

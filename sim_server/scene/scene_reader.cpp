@@ -898,9 +898,11 @@ class Parser : private common::YamlReader {
 
   void read_output(const YAML::Node& n, const std::string& path, OutputSpec& o) const {
     expect_map(n, path);
-    check_keys(n, path, {"file", "every"});
+    check_keys(n, path, {"file", "every", "compression"});
     if (const auto f = n["file"]; present(f)) o.file = text(f, child_path(path, "file"));
     if (const auto e = n["every"]; present(e)) o.every = at_least(e, child_path(path, "every"), 1);
+    if (const auto c = n["compression"]; present(c))
+      o.compression = between(c, child_path(path, "compression"), 0, 9);
   }
 
   // Every set named by a union, constraint or load exists, and unions do not refer to

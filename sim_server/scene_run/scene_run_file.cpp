@@ -38,6 +38,7 @@ std::unique_ptr<run_file::RunFileWriter> open_scene_run_file(const std::string& 
   // A static run's frames are load factors, not times. (assign, not = "1": GCC 12 warns
   // falsely about overlapping memcpy for a one-character literal.)
   if (!dynamic) options.time_unit.assign(1, '1');
+  options.deflate_level = scene.output.deflate_level(scene.model.is_reduced());
   std::vector<run_file::MuscleDescription> muscles;
   if (built.muscles) {
     for (const auto& m : built.muscles->muscles()) {

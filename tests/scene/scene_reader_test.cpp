@@ -55,6 +55,9 @@ TEST(SceneReader, MinimalSceneGetsDefaults) {
   EXPECT_EQ(s.threads, 1);
   EXPECT_TRUE(s.output.file.empty());
   EXPECT_EQ(s.output.every, 1);
+  EXPECT_FALSE(s.output.compression.has_value());
+  EXPECT_EQ(s.output.deflate_level(false), 4);
+  EXPECT_EQ(s.output.deflate_level(true), 0);
   EXPECT_EQ(s.source, "test.yaml");
   EXPECT_EQ(s.text, kMinimal);
 }
@@ -91,7 +94,7 @@ analysis:
 solver: {residual_rtol: 1e-7, residual_atol: 1e-10, increment_rtol: 1e-5, increment_atol: 1e-11,
          max_iterations: 12, line_search: false, max_tangent_reuse: 5, reform_ratio: 0.25,
          quasi_newton_updates: 4, displacement_tolerance: 2e-6, threads: 2}
-output: {file: logs/x.h5, every: 5}
+output: {file: logs/x.h5, every: 5, compression: 9}
 )",
                               "", "test.yaml");
   EXPECT_EQ(std::get<BoxMeshSpec>(s.mesh).origin, fem::Vec3(1, 2, 3));
@@ -137,6 +140,7 @@ output: {file: logs/x.h5, every: 5}
   EXPECT_EQ(s.solver_keys.size(), 11u);  // every key given
   EXPECT_EQ(s.output.file, "logs/x.h5");
   EXPECT_EQ(s.output.every, 5);
+  EXPECT_EQ(s.output.deflate_level(true), 9);  // given: whatever the model
 }
 
 TEST(SceneReader, EmptyValueCountsAsOmitted) {
@@ -423,8 +427,10 @@ TEST(SceneErrors, SolverThreadsOutOfRange) {
                "solver.quasi_newton_updates");
 }
 
-TEST(SceneErrors, OutputEveryZero) {
+TEST(SceneErrors, OutputEveryZeroOrCompressionOutOfRange) {
   expect_error(std::string(kMinimal) + "output: {every: 0}\n", "output.every");
+  expect_error(std::string(kMinimal) + "output: {compression: 10}\n", "output.compression");
+  expect_error(std::string(kMinimal) + "output: {compression: -1}\n", "output.compression");
 }
 
 TEST(SceneErrors, UnknownComponentLetter) {
