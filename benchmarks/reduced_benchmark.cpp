@@ -151,10 +151,12 @@ BasisRow evaluate(const scene::Scene& full_scene, const std::string& basis_path,
       run.nodes_steps += nodes;
       ++run.steps;
       run.simulated_s += dt;
-      if (r.reduced_correction)
-        run.max_indicator = std::max(run.max_indicator, *r.reduced_correction);
+      if (r.reduced_check)
+        run.max_indicator = std::max(run.max_indicator, r.reduced_check->correction);
     }
-    if (full.finish_checks()) run.lost_ellipticity = true;
+    if (full.finish_checks().ellipticity_loss) run.lost_ellipticity = true;
+    if (const auto last = reduced.finish_checks().reduced_check)
+      run.max_indicator = std::max(run.max_indicator, last->correction);
     const double rms = std::sqrt(run.squared_error / std::max(1L, run.nodes_steps));
     std::printf("%-16s %8.3f %8.3f %9.1f %9.1f %7.2f %7.2f %12.3f%s%s\n", seq.name.c_str(),
                 1e3 * rms, 1e3 * run.max_error, 1e3 * run.full_s, 1e3 * run.reduced_s,

@@ -104,7 +104,9 @@ StepFigures Simulation::step(const std::map<std::string, double>& levels) {
 
 std::vector<std::string> Simulation::finish_checks() {
   std::vector<std::string> warnings;
-  if (const auto last = run_->finish_checks()) warnings.push_back(ellipticity_warning(*last));
+  const scene_run::FinishedChecks last = run_->finish_checks();
+  if (last.ellipticity_loss) warnings.push_back(ellipticity_warning(*last.ellipticity_loss));
+  if (last.reduced_warning) warnings.push_back(*last.reduced_warning);
   return warnings;
 }
 

@@ -224,10 +224,7 @@ class BatchRun {
       stepping_.add(r.report);
       step_line(s + 1, r.report.time, r.report);
       if (r.ellipticity_loss) material_warning(*r.ellipticity_loss);
-      if (r.reduced_warning) {
-        std::fprintf(stderr, "sim_batch: warning: %s\n", r.reduced_warning->c_str());
-        if (log_) log_->set_attribute("reduced_model_warning", *r.reduced_warning);
-      }
+      if (r.reduced_warning) reduced_warning(*r.reduced_warning);
       if (!r.report.converged) {
         failure_ = r.report.message;
         std::fprintf(stderr,
@@ -244,7 +241,9 @@ class BatchRun {
         since_frame = Tally{};
       }
     }
-    if (const auto last = run.finish_checks()) material_warning(*last);
+    const scene_run::FinishedChecks last = run.finish_checks();
+    if (last.ellipticity_loss) material_warning(*last.ellipticity_loss);
+    if (last.reduced_warning) reduced_warning(*last.reduced_warning);
     return kExitOk;
   }
 
@@ -257,6 +256,11 @@ class BatchRun {
   const scene::BuiltScene& built() const { return run_ ? run_->built() : built_; }
 
   // Says once, on stderr and in the run file, when the material first loses strong ellipticity.
+  void reduced_warning(const std::string& text) {
+    std::fprintf(stderr, "sim_batch: warning: %s\n", text.c_str());
+    if (log_) log_->set_attribute("reduced_model_warning", text);
+  }
+
   void material_warning(const scene_run::EllipticityFinding& found) {
     material_warning(found.time, found.warning);
   }

@@ -3,7 +3,6 @@
 #include <cblas.h>
 
 #include <chrono>
-#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -134,13 +133,12 @@ void ReducedIntegrator::initialize(const fem::Vector& u0, const fem::Vector& v0,
   reconstruct();
   const fem::SolidModel& solid = system_.solid();
   const fem::RayleighDamping& d = settings_.damping;
-  // K0 and what is made of it (the damping, the check's factorization) are kept when the state
-  // is the one they were taken at: a restart of a run.
+  // K0 and the damping made of it are kept when the state is the one they were taken at: a
+  // restart of a run.
   const bool same_state = damping_state_.size() == u_.size() && damping_state_ == u_;
   if (!same_state) {
     damping_r_ = d.mass_coefficient * mass_r_;
     stiffness0_.reset();
-    check_solver_.reset();
   }
   if (!same_state && d.stiffness_coefficient != 0.0) {
     // K0 of the whole solid, loads left out, as the full integrator's damping has it.
@@ -349,42 +347,8 @@ bool ReducedIntegrator::advance(double dt, fem::StepReport& report, int depth) {
 
 double ReducedIntegrator::full_model_correction() {
   if (last_dt_ <= 0.0) return 0.0;  // no step yet: the state is the initial one
-  const fem::SolidModel& solid = system_.solid();
-  const fem::DofMap& dofs = solid.dofs();
-  const fem::NewmarkParameters& p = settings_.newmark;
-  const fem::RayleighDamping& d = settings_.damping;
-  if (!check_solver_ || check_dt_ != last_dt_) {
-    // S = c0 M + c1 C + K0, C = alpha M + beta_R K0: the full step's tangent at the origin.
-    if (!stiffness0_) {
-      stiffness0_.emplace(solid.pattern());
-      fem::Vector f;
-      if (!solid.assemble(origin_, f, &*stiffness0_).ok)
-        return std::numeric_limits<double>::infinity();
-    }
-    const double c0 = 1.0 / (p.beta * last_dt_ * last_dt_), c1 = p.gamma / (p.beta * last_dt_);
-    fem::SymmetricMatrix s(solid.pattern());
-    s.scale_and_add(0.0, c0 + c1 * d.mass_coefficient, mass_);
-    s.scale_and_add(1.0, 1.0 + c1 * d.stiffness_coefficient, *stiffness0_);
-    check_solver_ = std::make_unique<fem::CholmodSolver>(solid.pattern());
-    // The correction is an indicator compared with a threshold in millimetres: a factor in
-    // single precision gives it to the micrometre (every run of reduced_benchmark's the same to
-    // 1 um) in 0.40-0.48 ms a solve instead of 0.58-0.65 ms on the tongue.
-    check_solver_->set_single_precision(true);
-    if (!check_solver_->factorize(s).ok) {
-      check_solver_.reset();
-      return std::numeric_limits<double>::infinity();
-    }
-    check_dt_ = last_dt_;
-  }
-  fem::Vector r;
-  if (!system_.residual(u_, 1.0, r, nullptr).ok) return std::numeric_limits<double>::infinity();
-  const fem::Vector v = dofs.gather_free(v_);
-  fem::Vector dynamic =
-      dofs.gather_free(r) + mass_.multiply(dofs.gather_free(a_) + d.mass_coefficient * v);
-  if (d.stiffness_coefficient != 0.0) dynamic += d.stiffness_coefficient * stiffness0_->multiply(v);
-  const double correction = check_solver_->solve(dynamic).lpNorm<Eigen::Infinity>();
-  // Never NaN: a state the full model cannot judge is as untrusted as it gets.
-  return std::isnan(correction) ? std::numeric_limits<double>::infinity() : correction;
+  if (!check_) check_ = std::make_unique<FullModelCheck>(system_, origin_, settings_);
+  return check_->correction(u_, v_, a_, last_dt_);
 }
 
 }  // namespace tongue::reduced

@@ -23,7 +23,7 @@
 #include "fem/integrator/newmark_integrator.hpp"
 #include "fem/integrator/step_report.hpp"
 #include "fem/integrator/time_integrator.hpp"
-#include "fem/solver/cholmod_solver.hpp"
+#include "reduced/full_model_check.hpp"
 #include "reduced/galerkin_projector.hpp"
 #include "reduced/reduced_basis_file.hpp"
 
@@ -49,13 +49,8 @@ class ReducedIntegrator : public fem::TimeIntegrator {
   bool at_rest() const override;
   fem::StepReport hold(double dt) override;
 
-  // The error indicator: the full model's dynamic residual at the current reduced state,
-  // R = M a + C v + f_int - f_ext over the free dofs with every element, turned into the
-  // correction the full model's Newton method would make from there, S^-1 R with S the last
-  // step's tangent at the origin (c0 M + c1 C + K0), as its largest nodal component [m]: zero
-  // for a state of the full model, and what the basis cannot represent otherwise. Costs one
-  // full residual and one solve (S is factorized, in single precision, at the first call and
-  // when dt changes); 0 before the first step.
+  // The error indicator of the current state (FullModelCheck), the loads as they stand (the
+  // last step's activations); 0 before the first step.
   double full_model_correction();
 
   // Full vectors, reconstructed from the reduced state.
@@ -92,10 +87,10 @@ class ReducedIntegrator : public fem::TimeIntegrator {
   fem::Vector origin_correction_;  // Phi^T (f_int - f_int of the sample) at the origin
   fem::SymmetricMatrix mass_;
   Eigen::MatrixXd mass_r_, damping_r_;
-  std::optional<fem::SymmetricMatrix> stiffness0_;    // K0 over the free dofs, for C and S
-  std::unique_ptr<fem::CholmodSolver> check_solver_;  // S, for full_model_correction
-  fem::Vector damping_state_;                         // the state K0 was taken at
-  double check_dt_ = 0.0, last_dt_ = 0.0;
+  std::optional<fem::SymmetricMatrix> stiffness0_;  // K0 over the free dofs, for C
+  fem::Vector damping_state_;                       // the state K0 was taken at
+  std::unique_ptr<FullModelCheck> check_;           // made at the first full_model_correction()
+  double last_dt_ = 0.0;
   Eigen::MatrixXd newton_matrix_;         // the reduced tangent of the step, BFGS-updated
   Eigen::LDLT<Eigen::MatrixXd> tangent_;  // its factor
   double tangent_dt_ = 0.0;               // 0: no factor

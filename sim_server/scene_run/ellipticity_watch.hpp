@@ -8,14 +8,12 @@
 // accepted state is checked once, in order, whatever the threads' timing, so the findings are
 // those of first_loss called on the main thread, each delivered one call later: a loss in the
 // state of step k is reported with step k + 1's result (or by collect() at the end of a run).
-#include <condition_variable>
 #include <cstdint>
-#include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
 
 #include "fem/assembly/ellipticity_monitor.hpp"
+#include "scene_run/background_task.hpp"
 
 namespace tongue::scene_run {
 
@@ -31,7 +29,6 @@ class EllipticityWatch {
  public:
   // numbering names the element of a warning (fem::describe).
   explicit EllipticityWatch(const fem::SolidModel& solid, fem::MeshNumbering numbering = {});
-  ~EllipticityWatch();  // waits for the check under way
   EllipticityWatch(const EllipticityWatch&) = delete;
   EllipticityWatch& operator=(const EllipticityWatch&) = delete;
 
@@ -47,22 +44,17 @@ class EllipticityWatch {
   void rearm();
 
  private:
-  void run();  // the worker
-  std::optional<EllipticityFinding> wait_and_take(std::unique_lock<std::mutex>& lock);
+  void check_state();  // the task's job
 
-  fem::EllipticityMonitor monitor_;  // the worker's while busy_
+  fem::EllipticityMonitor monitor_;  // the task's while a check is under way
   const fem::Material& material_;
   const fem::MeshNumbering numbering_;
-  std::mutex mutex_;
-  std::condition_variable changed_;  // a check handed over or ended, or stopping
-  fem::Vector u_;                    // the state being checked: the worker's while busy_
+  fem::Vector u_;  // the state being checked: the task's while a check is under way
   std::int64_t step_ = 0;
   double time_ = 0.0;
-  bool busy_ = false;
-  bool found_loss_ = false;  // this run's finding made: nothing more to check
-  bool stopping_ = false;
+  bool found_loss_ = false;                  // this run's finding made: nothing more to check
   std::optional<EllipticityFinding> found_;  // not yet collected
-  std::thread worker_;
+  BackgroundTask task_;                      // last: stopped first
 };
 
 }  // namespace tongue::scene_run

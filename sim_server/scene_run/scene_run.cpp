@@ -19,6 +19,8 @@ SceneRun::SceneRun(const scene::Scene& scene, scene::BuiltScene built)
     basis_ = reduced::read_reduced_basis(scene_.model.reduced);
     reduced::check_fits(*basis_, scene_.model.reduced, built_.solid->mesh(),
                         scene::material_text(scene_.material));
+    if (scene_.model.check_every > 0)
+      reduced_watch_ = std::make_unique<ReducedCheckWatch>(scene_, basis_->origin);
   }
   levels_ = fem::Vector::Zero(num_muscles());
   initial_u_ = fem::Vector::Zero(built_.solid->num_dofs());
@@ -66,6 +68,7 @@ void SceneRun::restart(const fem::Vector& first_levels) {
   clock_ = StepClock{};
   step_ = 0;
   ellipticity_.rearm();
+  if (reduced_watch_) reduced_watch_->collect();  // the last run's, which finish_checks() takes
   reduced_warned_ = false;
   reduced_correction_ = 0.0;
 }
@@ -115,27 +118,21 @@ StepResult SceneRun::step(double dt, const fem::Vector& levels) {
   ++step_;
   result.muscles = frame_;
   result.ellipticity_loss = ellipticity_.check(u_, step_, time_);
-  check_reduced(result);
+  check_reduced(result, dt);
   return result;
 }
 
-void SceneRun::check_reduced(StepResult& result) {
+void SceneRun::check_reduced(StepResult& result, double dt) {
   const scene::ModelSpec& model = scene_.model;
   auto* reduced = dynamic_cast<reduced::ReducedIntegrator*>(integrator_.get());
-  if (!reduced || model.check_every == 0 || step_ % model.check_every != 0) return;
-  const double c = reduced->full_model_correction();
-  result.reduced_correction = reduced_correction_ = c;
-  if (c <= model.warn_above || reduced_warned_) return;
-  reduced_warned_ = true;
-  char text[320];
-  std::snprintf(text, sizeof text,
-                "at t = %.6g s (step %lld) the full model would move the reduced model's state "
-                "by %.3g mm, more than model.warn_above (%.3g mm): the run has left what the "
-                "basis was trained on%s",
-                time_, static_cast<long long>(step_), 1e3 * c, 1e3 * model.warn_above,
-                model.switch_to_full ? "; going on with the full model from this state" : "");
-  result.reduced_warning = text;
-  if (!model.switch_to_full) return;
+  if (!reduced || !reduced_watch_ || step_ % model.check_every != 0) return;
+  result.reduced_check = reduced_watch_->check(u_, v_, reduced->acceleration(), levels_, dt,
+                                               step_, time_);
+  // A switch starts from the state that called for it: its check is waited for.
+  if (model.switch_to_full) result.reduced_check = reduced_watch_->collect();
+  if (!result.reduced_check) return;
+  result.reduced_warning = take_reduced_check(*result.reduced_check);
+  if (!result.reduced_warning || !model.switch_to_full) return;
   // The full model from the reduced state, its acceleration included, with the damping a full
   // run has (K0 at the initial state).
   const fem::Vector a = reduced->acceleration();
@@ -145,8 +142,28 @@ void SceneRun::check_reduced(StepResult& result) {
   integrator_ = std::move(full);
 }
 
-std::optional<EllipticityFinding> SceneRun::finish_checks() {
-  return ellipticity_.collect();
+std::optional<std::string> SceneRun::take_reduced_check(const ReducedCheck& check) {
+  const scene::ModelSpec& model = scene_.model;
+  reduced_correction_ = check.correction;
+  if (check.correction <= model.warn_above || reduced_warned_) return std::nullopt;
+  reduced_warned_ = true;
+  char text[320];
+  std::snprintf(text, sizeof text,
+                "at t = %.6g s (step %lld) the full model would move the reduced model's state "
+                "by %.3g mm, more than model.warn_above (%.3g mm): the run has left what the "
+                "basis was trained on%s",
+                check.time, static_cast<long long>(check.step), 1e3 * check.correction,
+                1e3 * model.warn_above,
+                model.switch_to_full ? "; going on with the full model from this state" : "");
+  return text;
+}
+
+FinishedChecks SceneRun::finish_checks() {
+  FinishedChecks found;
+  found.ellipticity_loss = ellipticity_.collect();
+  if (reduced_watch_) found.reduced_check = reduced_watch_->collect();
+  if (found.reduced_check) found.reduced_warning = take_reduced_check(*found.reduced_check);
+  return found;
 }
 
 bool SceneRun::reduced_now() const {

@@ -19,9 +19,11 @@
 // Activations enter only as the argument of step(): nothing else sets them.
 // A scene with `model: {reduced: FILE}` is stepped by the reduced model of that basis
 // (reduced::ReducedIntegrator) from the same initial state, projected onto the basis; every
-// model.check_every steps the full model's residual at the reduced state is evaluated and
-// reported with the step; above model.warn_above it warns, and with model.switch_to_full the
-// run goes on with the full model from there (until the next restart).
+// model.check_every steps the full model's residual at the reduced state is evaluated, off the
+// step's critical path (ReducedCheckWatch), and reported with the step that hands over the next
+// check (or by finish_checks()); above model.warn_above it warns. With model.switch_to_full each
+// check is waited for and reported with its own step, and the run goes on with the full model
+// from the state that called for it (until the next restart).
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -34,6 +36,7 @@
 #include "scene/scene.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene_run/ellipticity_watch.hpp"
+#include "scene_run/reduced_check_watch.hpp"
 #include "scene_run/step_clock.hpp"
 
 namespace tongue::scene_run {
@@ -52,11 +55,19 @@ struct StepResult {
   // reports a loss in the state of step k, and finish_checks() one in the last state. The finding
   // names its step.
   std::optional<EllipticityFinding> ellipticity_loss;
-  // With a reduced model, on the steps it is checked: the largest nodal correction the full
-  // model would make to the new state [m] (reduced::ReducedIntegrator::full_model_correction);
-  // and, the first time in a run that it exceeds the scene's model.warn_above, a warning that
-  // says so (when and by how much).
-  std::optional<double> reduced_correction;
+  // With a reduced model, on the steps a check is reported: the error indicator of the state it
+  // checked (that of step reduced_check->step, check_every steps back; this step's own with
+  // model.switch_to_full); and, the first time in a run that it exceeds the scene's
+  // model.warn_above, a warning that says so (of which state and by how much).
+  std::optional<ReducedCheck> reduced_check;
+  std::optional<std::string> reduced_warning;
+};
+
+// What the checks made off the step's critical path found in the last states, which no step
+// reported (finish_checks()).
+struct FinishedChecks {
+  std::optional<EllipticityFinding> ellipticity_loss;
+  std::optional<ReducedCheck> reduced_check;
   std::optional<std::string> reduced_warning;
 };
 
@@ -101,10 +112,10 @@ class SceneRun {
   // (fem::NewmarkIntegrator::at_rest; report.held). Throws std::invalid_argument for levels of the
   // wrong size or out of range, std::logic_error before start().
   StepResult step(double dt, const fem::Vector& levels);
-  // The check of the last accepted state, which step() reports with the next step's result:
-  // waits for it and returns its finding, if any. For the end of a run, so that a loss in the
-  // last state is not left unsaid.
-  std::optional<EllipticityFinding> finish_checks();
+  // The checks under way, which step() reports with a later step's result: waits for them and
+  // returns what they found. For the end of a run, so that a loss of ellipticity in the last
+  // state, or the error indicator of the last reduced state checked, is not left unsaid.
+  FinishedChecks finish_checks();
 
   const scene::Scene& scene() const { return scene_; }
   const scene::BuiltScene& built() const { return built_; }
@@ -121,8 +132,8 @@ class SceneRun {
   // The integrator, read-only, for diagnostics that look inside a step (its acceleration);
   // valid after start().
   const fem::TimeIntegrator& integrator() const { return *integrator_; }
-  // The reduced model's error indicator at its last check [m] (StepResult::reduced_correction);
-  // 0 for the full model and before the first check of a run.
+  // The reduced model's error indicator at its last check reported [m]
+  // (StepResult::reduced_check); 0 for the full model and before the first report of a run.
   double reduced_correction() const { return reduced_correction_; }
   // Whether the reduced model steps the run now (false for the full model, and after a switch
   // to it, model.switch_to_full, until the next restart).
@@ -140,9 +151,13 @@ class SceneRun {
   std::unique_ptr<fem::TimeIntegrator> integrator_;
   EllipticityWatch ellipticity_;
   void accept();  // the integrator's state becomes the last accepted one
-  // A reduced model's check on the steps it is due, its warning, and the switch to the full
-  // model when the scene asks for it.
-  void check_reduced(StepResult& result);
+  // A reduced model's check handed over on the steps it is due, the result of the one before
+  // taken, and the switch to the full model when the scene asks for it.
+  void check_reduced(StepResult& result, double dt);
+  // A check's result becomes the run's indicator; returns the warning when it is the run's
+  // first above model.warn_above.
+  std::optional<std::string> take_reduced_check(const ReducedCheck& check);
+  std::unique_ptr<ReducedCheckWatch> reduced_watch_;  // with a reduced model that checks
 
   fem::Vector initial_u_;
   fem::Vector u_, v_;  // m, m/s: the last accepted state (a failed step may leave the

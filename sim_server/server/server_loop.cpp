@@ -87,8 +87,10 @@ ExitStatus ServerLoop::run() {
   ExitStatus status = common::kExitError;
   try {
     status = loop();
-    // The last state's stability check, which no next step reports.
-    if (const auto last = run_.finish_checks()) warn_material(*last);
+    // The last states' checks, which no next step reports.
+    const scene_run::FinishedChecks last = run_.finish_checks();
+    if (last.ellipticity_loss) warn_material(*last.ellipticity_loss);
+    if (last.reduced_warning) warn_reduced(*last.reduced_warning);
   } catch (const std::exception& e) {
     status = common::kExitError;
     failure_ = e.what();
@@ -380,10 +382,7 @@ void ServerLoop::take_step(const fem::Vector& levels) {
   mark = timing_.add(StepTiming::Part::physics, mark);
   timing_.add_solver(last_.report);
   if (last_.ellipticity_loss) warn_material(*last_.ellipticity_loss);
-  if (last_.reduced_warning) {
-    std::fprintf(stderr, "sim_server: warning: %s\n", last_.reduced_warning->c_str());
-    if (log_) log_->set_attribute("reduced_model_warning", *last_.reduced_warning);
-  }
+  if (last_.reduced_warning) warn_reduced(*last_.reduced_warning);
   if (!last_.report.converged) {
     failure_ = "step " + std::to_string(from + 1) + " failed to converge: " + last_.report.message;
     std::fprintf(stderr, "sim_server: %s; stopping at the last accepted state\n", failure_.c_str());
@@ -425,6 +424,11 @@ void ServerLoop::warn_material(const scene_run::EllipticityFinding& found) {
   const std::string step = std::to_string(found.step);
   std::fprintf(stderr, "sim_server: warning: at step %s %s\n", step.c_str(), found.warning.c_str());
   if (log_) log_->set_attribute("material_warning", "step " + step + ": " + found.warning);
+}
+
+void ServerLoop::warn_reduced(const std::string& warning) {
+  std::fprintf(stderr, "sim_server: warning: %s\n", warning.c_str());
+  if (log_) log_->set_attribute("reduced_model_warning", warning);
 }
 
 void ServerLoop::publish_model() {

@@ -98,6 +98,7 @@ class ServerLoop {
   void take_step(const fem::Vector& levels);
   void count_overrun(double late);  // real-time: late [s] > 0 is an overrun
   void warn_material(const scene_run::EllipticityFinding& found);  // stderr and run file
+  void warn_reduced(const std::string& warning);                   // stderr and run file
   void publish_model();
   void publish_state(const std::string& status, bool converged = true);
   void log_frame();

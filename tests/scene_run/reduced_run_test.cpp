@@ -1,13 +1,19 @@
 // A scene run with its reduced model (`model: {reduced: FILE}`): trained on the box's full
 // model, it follows the full model on another activation, checks itself against the full
-// model's residual every check_every steps and warns once per run above warn_above; a basis for
+// model's residual every check_every steps on a thread of its own (each check reported with the
+// step that hands over the next, its value the same as on the run's thread), warns once per run
+// above warn_above and switches to the full model from the checked state; a basis for
 // another material, a reduced model in a static scene and a missing basis are refused.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
+#include "reduced/full_model_check.hpp"
 #include "scene/scene_builder.hpp"
 #include "scene/scene_reader.hpp"
 #include "scene_run/scene_run.hpp"
@@ -55,7 +61,22 @@ TEST_F(ReducedRun, FollowsTheFullModelAndChecksItself) {
   EXPECT_EQ(full.reduced_basis(), nullptr);
   // Both start from the settled state: the basis' origin is that state.
   EXPECT_LT((reduced.displacement() - full.displacement()).cwiseAbs().maxCoeff(), 1e-15);
+  // The check's own computation on the run's thread, on a build of its own whose muscles take
+  // each checked state's levels: what the watch must deliver, to the bit.
+  const scene::BuiltScene own = scene::build_scene(full_scene);
+  reduced::FullModelCheck check(*own.system, reduced.reduced_basis()->origin,
+                                own.dynamic_settings);
+  std::map<std::int64_t, double> expected;  // by the checked state's step
   double error = 0.0, motion = 0.0, largest_correction = 0.0;
+  int reports = 0;
+  const auto take = [&](const std::optional<ReducedCheck>& c) {
+    if (!c) return;
+    ++reports;
+    ASSERT_TRUE(expected.count(c->step)) << "a check of step " << c->step;
+    EXPECT_EQ(c->correction, expected.at(c->step)) << "step " << c->step;
+    EXPECT_DOUBLE_EQ(c->time, c->step * kDt);
+    largest_correction = std::max(largest_correction, c->correction);
+  };
   for (int k = 0; k < kSteps; ++k) {
     // Another level than the training's: 0.6.
     ASSERT_TRUE(full.step(kDt, level(k, 0.6)).report.converged);
@@ -64,12 +85,26 @@ TEST_F(ReducedRun, FollowsTheFullModelAndChecksItself) {
     error = std::max(error, (reduced.displacement() - full.displacement()).cwiseAbs().maxCoeff());
     motion =
         std::max(motion, (full.displacement() - full.initial_displacement()).cwiseAbs().maxCoeff());
-    // Checked on every fifth step only, the default threshold (1 mm) far above what it finds.
-    EXPECT_EQ(r.reduced_correction.has_value(), (k + 1) % 5 == 0) << "step " << k + 1;
-    if (r.reduced_correction)
-      largest_correction = std::max(largest_correction, *r.reduced_correction);
+    if ((k + 1) % 5 == 0) {
+      own.muscles->set_activations(level(k, 0.6));
+      expected[k + 1] = check.correction(reduced.displacement(), reduced.velocity(),
+                                         reduced.integrator().acceleration(), kDt);
+    }
+    // Every fifth step is checked, and reported with the step that hands over the next check;
+    // the default threshold (1 mm) far above what it finds.
+    EXPECT_EQ(r.reduced_check.has_value(), (k + 1) % 5 == 0 && k + 1 > 5) << "step " << k + 1;
+    if (r.reduced_check) {
+      EXPECT_EQ(r.reduced_check->step, k + 1 - 5);
+    }
+    take(r.reduced_check);
     EXPECT_FALSE(r.reduced_warning.has_value());
   }
+  const FinishedChecks last = reduced.finish_checks();  // the check of the last step
+  ASSERT_TRUE(last.reduced_check.has_value());
+  EXPECT_EQ(last.reduced_check->step, kSteps);
+  take(last.reduced_check);
+  EXPECT_EQ(reports, kSteps / 5);
+  EXPECT_EQ(reduced.reduced_correction(), last.reduced_check->correction);
   // The flexor moves the free end by about half a millimetre; the reduced model follows within
   // 2 % of that (measured: 1.3 %; the basis holds the training run's motion to 1e-7 of its
   // energy, the other level's response differs by the nonlinearity, the sample's force by up
@@ -93,7 +128,9 @@ TEST_F(ReducedRun, WarnsOncePerRunAboveTheThreshold) {
       ASSERT_TRUE(r.report.converged);
       if (r.reduced_warning) {
         ++warnings;
-        EXPECT_EQ(k + 1, 2);  // the first check
+        EXPECT_EQ(k + 1, 4);  // the first check's report, that of step 2
+        EXPECT_NE(r.reduced_warning->find("(step 2) the full model would move"), std::string::npos)
+            << *r.reduced_warning;
         EXPECT_NE(r.reduced_warning->find("model.warn_above"), std::string::npos)
             << *r.reduced_warning;
       }
@@ -115,8 +152,9 @@ TEST_F(ReducedRun, RestartRepeatsTheRunBitForBit) {
     for (int k = 0; k < 12; ++k) {
       const StepResult r = run.step(kDt, level(k, 0.6));
       EXPECT_TRUE(r.report.converged);
-      if (r.reduced_correction) corrections.push_back(*r.reduced_correction);
+      if (r.reduced_check) corrections.push_back(r.reduced_check->correction);
     }
+    if (const auto c = run.finish_checks().reduced_check) corrections.push_back(c->correction);
     return std::make_pair(run.displacement(), corrections);
   };
   const auto first = drive();
@@ -152,6 +190,9 @@ TEST_F(ReducedRun, SwitchesToTheFullModelWhenAskedTo) {
     ASSERT_TRUE(r.report.converged) << r.report.message;
     const double error = (run.displacement() - full.displacement()).cwiseAbs().maxCoeff();
     if (k + 1 == 2) {
+      // The check is waited for: reported with its own step, from which the switch is made.
+      ASSERT_TRUE(r.reduced_check.has_value());
+      EXPECT_EQ(r.reduced_check->step, 2);
       ASSERT_TRUE(r.reduced_warning.has_value());
       EXPECT_NE(r.reduced_warning->find("going on with the full model"), std::string::npos);
       EXPECT_FALSE(run.reduced_now());
@@ -162,7 +203,7 @@ TEST_F(ReducedRun, SwitchesToTheFullModelWhenAskedTo) {
       EXPECT_EQ(run.velocity(), stay.velocity());
       EXPECT_EQ(run.integrator().acceleration(), stay.integrator().acceleration());
     } else if (k + 1 > 2) {
-      EXPECT_FALSE(r.reduced_correction.has_value()) << "step " << k + 1;
+      EXPECT_FALSE(r.reduced_check.has_value()) << "step " << k + 1;
       after = std::max(after, error);
     }
   }

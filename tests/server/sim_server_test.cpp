@@ -126,8 +126,10 @@ TEST_F(SimServer, LockStepAdvancesOneStepPerActivationAndShutsDownCleanly) {
 }
 
 TEST_F(SimServer, AReducedModelPublishesItsIndicator) {
-  // The box's reduced model (trained on its full model), checked every 3 steps: each state
-  // carries the indicator of the last check, 0 before the first; the run file the same.
+  // The box's reduced model (trained on its full model), checked every 3 steps off the step's
+  // path, each check reported with the step that hands over the next: each state carries the
+  // indicator of the last check reported, 0 before the first (at step 6, of step 3); the run
+  // file the same.
   const std::string basis = (dir_ / "basis.h5").string();
   testing::write_reduced_basis_of(scene::parse_scene(kBoxScene, "", "box.yaml"), 40, basis);
   start(7719, {}, std::string(kBoxScene) + "model: {reduced: '" + basis + "', check_every: 3}\n");
@@ -136,17 +138,18 @@ TEST_F(SimServer, AReducedModelPublishesItsIndicator) {
   ASSERT_TRUE(s0) << server_->stderr_text();
   EXPECT_EQ(s0->reduced_model_correction, 0.0);
   double last = 0.0;
-  for (int k = 1; k <= 6; ++k) {
+  for (int k = 1; k <= 9; ++k) {
     const lcmt_tongue_state s = step_to(k, 0.7);
     ASSERT_TRUE(s.converged) << s.status;
-    if (k < 3) {
+    if (k < 6) {
       EXPECT_EQ(s.reduced_model_correction, 0.0) << "step " << k;
     }
-    if (k == 3 || k == 6) {
+    if (k == 6 || k == 9) {
       EXPECT_GT(s.reduced_model_correction, 0.0) << "step " << k;
       EXPECT_LT(s.reduced_model_correction, 1e-4) << "step " << k;  // m, far below 1 mm
+      EXPECT_NE(s.reduced_model_correction, last) << "step " << k;  // another state's
     }
-    if (k == 4 || k == 5) {
+    if (k == 7 || k == 8) {
       EXPECT_EQ(s.reduced_model_correction, last) << "step " << k;
     }
     last = s.reduced_model_correction;
