@@ -37,6 +37,17 @@ StepFigures step(Simulation& simulation, const Levels& levels) {
   return figures;
 }
 
+// Resets without the GIL, then raises the ended run's warnings.
+template <typename Levels>
+std::vector<std::string> reset(Simulation& simulation, const Levels& first_levels) {
+  std::vector<std::string> warnings;
+  {
+    py::gil_scoped_release release;
+    warnings = simulation.reset(first_levels);
+  }
+  return warn(warnings);
+}
+
 // A dataset as a NumPy array of its shape.
 py::array_t<double> to_array(const tongue::python::Dataset& d) {
   std::vector<py::ssize_t> shape(d.shape.begin(), d.shape.end());
@@ -87,18 +98,15 @@ PYBIND11_MODULE(tongue, m) {
            "One step of dt with the levels of the muscles or groups named ({'SG': 0.125} sets "
            "SG_left and SG_right); the others keep the last step's levels.")
       .def(
-          "reset",
-          [](Simulation& s) {
-            std::vector<std::string> warnings;
-            {
-              py::gil_scoped_release release;
-              warnings = s.reset();
-            }
-            return warn(warnings);
-          },
-          "Back to the settled state at time 0 with all levels 0; the run that follows repeats "
-          "the first one exactly, its warnings too. Returns finish_checks() of the run that "
-          "ended (also issued as RuntimeWarning).")
+          "reset", [](Simulation& s) { return reset(s, tongue::fem::Vector()); },
+           "Back to the settled state at time 0 with all levels 0; the run that follows repeats "
+           "the first one exactly, its warnings too. Returns finish_checks() of the run that "
+           "ended (also issued as RuntimeWarning). first_levels: the first step's levels when "
+           "known (every muscle's, or a dict of muscles and groups as step() takes, the others "
+           "0): the first step's factorization is made here under them, as sim_batch does, "
+           "instead of again at the first step; the states are the same either way.")
+      .def("reset", &reset<tongue::fem::Vector>, py::arg("first_levels"))
+      .def("reset", &reset<std::map<std::string, double>>, py::arg("first_levels"))
       .def(
           "finish_checks", [](Simulation& s) { return warn(s.finish_checks()); },
           "The warnings of the checks still under way on the last state (the material's loss "

@@ -85,13 +85,17 @@ StepFigures Simulation::step(const fem::Vector& levels) {
 }
 
 StepFigures Simulation::step(const std::map<std::string, double>& levels) {
-  fem::Vector all = run_->levels();
+  return step(with_named(run_->levels(), levels));
+}
+
+fem::Vector Simulation::with_named(fem::Vector base,
+                                   const std::map<std::string, double>& levels) const {
   for (const auto& [name, level] : levels) {
     bool found = false;
     for (std::size_t m = 0; m < muscle_names_.size(); ++m) {
       const std::string& muscle = muscle_names_[m];
       if (muscle == name || muscle.rfind(name + "_", 0) == 0) {
-        all[static_cast<Eigen::Index>(m)] = level;
+        base[static_cast<Eigen::Index>(m)] = level;
         found = true;
       }
     }
@@ -99,7 +103,7 @@ StepFigures Simulation::step(const std::map<std::string, double>& levels) {
       throw std::invalid_argument("'" + name + "' is neither a muscle nor a group of " +
                                   scene_.source);
   }
-  return step(all);
+  return base;
 }
 
 std::vector<std::string> Simulation::finish_checks() {
@@ -110,13 +114,25 @@ std::vector<std::string> Simulation::finish_checks() {
   return warnings;
 }
 
-std::vector<std::string> Simulation::reset() {
+std::vector<std::string> Simulation::reset(const fem::Vector& first_levels) {
+  if (first_levels.size() != 0 && first_levels.size() != run_->num_muscles())
+    throw std::invalid_argument("reset: " + std::to_string(first_levels.size()) +
+                                " first levels for " + std::to_string(run_->num_muscles()) +
+                                " muscles");
+  for (const double level : first_levels)
+    if (!(level >= 0.0 && level <= 1.0))
+      throw std::invalid_argument("reset: a first level of " + std::to_string(level) +
+                                  ", outside [0, 1]");
   std::vector<std::string> warnings = finish_checks();
-  run_->restart();
+  run_->restart(first_levels);
   if (!log_) return warnings;
   log_->set_attribute("resets", std::to_string(++resets_));
   write_frame({});
   return warnings;
+}
+
+std::vector<std::string> Simulation::reset(const std::map<std::string, double>& first_levels) {
+  return reset(with_named(fem::Vector::Zero(run_->num_muscles()), first_levels));
 }
 
 Eigen::MatrixX3d Simulation::by_node(const fem::Vector& v) {

@@ -93,6 +93,32 @@ def test_reset_repeats_the_run(sim):
     assert np.array_equal(sim.positions, first)
 
 
+def test_a_reset_told_the_first_levels_saves_the_first_steps_factorization(sim):
+    # The first step's factor is formed at the reset under the levels given, as sim_batch forms
+    # it at start-up: the first step then forms none, and the states are the same to the bit.
+    levels = sg_levels(sim, 2.0)
+    sim.reset()
+    first = sim.step(levels)
+    assert first.factorizations == 1  # SG 2 N is far from the muscles-off factor's levels
+    runs = []
+    for first_levels in (levels, {"SG": levels[sim.muscle_names.index("SG_left")]}):
+        sim.reset(first_levels)
+        figures = [sim.step(levels) for _ in range(5)]
+        assert figures[0].factorizations == 0
+        runs.append(sim.positions.copy())
+    sim.reset()
+    for _ in range(5):
+        sim.step(levels)
+    assert np.array_equal(runs[0], sim.positions)
+    assert np.array_equal(runs[1], sim.positions)
+    with pytest.raises(ValueError, match="first levels for"):
+        sim.reset(np.zeros(3))
+    with pytest.raises(ValueError, match="outside"):
+        sim.reset({"SG": 1.5})
+    with pytest.raises(ValueError, match="neither a muscle nor a group"):
+        sim.reset({"XX": 0.1})
+
+
 def test_the_model_and_the_state_in_si_units(sim):
     sim.reset()
     n = sim.rest_positions.shape[0]
