@@ -77,7 +77,7 @@ class SolidModel {
   // Body force of a uniform acceleration field (e.g. gravity) [N]: rho g int N_a dV.
   Vector body_force(const Vec3& acceleration) const;
   double total_mass() const;
-  double reference_volume() const;
+  double reference_volume() const { return reference_volume_; }  // m^3, the elements' sum
   // Current volume int J dV over the solid [m^3] at displacement u, by the divergence theorem
   // over the boundary faces: (1/3) sum of int x . n dA, exact for trilinear elements as the
   // elements' 2x2x2 Gauss sum is (the interior faces cancel), at a fraction of its cost.
@@ -123,6 +123,7 @@ class SolidModel {
   DofMap dofs_;
   Vector rest_positions_;
   std::vector<ElementGeometry> geometry_;
+  double reference_volume_ = 0.0;  // m^3
   std::vector<Quad4> boundary_;  // outward-oriented boundary faces, for current_volume
   std::shared_ptr<const BatchLayout> all_batches_;  // null unless the material is uncoupled
   mutable std::mutex packed_mutex_;
