@@ -115,14 +115,7 @@ std::vector<std::string> Simulation::finish_checks() {
 }
 
 std::vector<std::string> Simulation::reset(const fem::Vector& first_levels) {
-  if (first_levels.size() != 0 && first_levels.size() != run_->num_muscles())
-    throw std::invalid_argument("reset: " + std::to_string(first_levels.size()) +
-                                " first levels for " + std::to_string(run_->num_muscles()) +
-                                " muscles");
-  for (const double level : first_levels)
-    if (!(level >= 0.0 && level <= 1.0))
-      throw std::invalid_argument("reset: a first level of " + std::to_string(level) +
-                                  ", outside [0, 1]");
+  run_->check_first_levels(first_levels);  // before the run is touched
   std::vector<std::string> warnings = finish_checks();
   run_->restart(first_levels);
   if (!log_) return warnings;

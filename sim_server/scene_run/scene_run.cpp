@@ -45,10 +45,18 @@ fem::StaticReport SceneRun::start(const fem::Vector& first_levels) {
   return report;
 }
 
-void SceneRun::restart(const fem::Vector& first_levels) {
+void SceneRun::check_first_levels(const fem::Vector& first_levels) const {
   if (first_levels.size() != 0 && first_levels.size() != num_muscles())
     throw std::invalid_argument("SceneRun::restart: " + std::to_string(first_levels.size()) +
                                 " first levels for " + std::to_string(num_muscles()) + " muscles");
+  for (const double level : first_levels)
+    if (!(level >= 0.0 && level <= 1.0))
+      throw std::invalid_argument("SceneRun::restart: a first level of " + std::to_string(level) +
+                                  ", outside [0, 1]");
+}
+
+void SceneRun::restart(const fem::Vector& first_levels) {
+  check_first_levels(first_levels);
   levels_ = fem::Vector::Zero(num_muscles());
   factor_levels_ = first_levels.size() != 0 ? first_levels : levels_;
   if (built_.muscles) built_.muscles->set_activations(levels_);

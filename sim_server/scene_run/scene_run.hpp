@@ -94,8 +94,10 @@ class SceneRun {
   // before it is still reported, by the next step (its finding names its step), unless
   // finish_checks() took it. The first step's factor is formed here under first_levels (empty:
   // all 0; the acceleration is taken with all 0 regardless).
-  // Throws std::invalid_argument for first_levels of the wrong size.
+  // Throws std::invalid_argument for first_levels of the wrong size or out of [0, 1]
+  // (check_first_levels), before anything is changed.
   void restart(const fem::Vector& first_levels = {});
+  void check_first_levels(const fem::Vector& first_levels) const;
 
   // How far [1] a first step's levels may be from those its factor was formed with before the
   // step forms it again. A factor formed without a step of activation converges to the step's

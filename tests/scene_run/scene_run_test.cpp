@@ -185,6 +185,11 @@ TEST(SceneRun, RejectsLevelsOfTheWrongSizeOrRangeAndStaticScenes) {
   EXPECT_THROW(run.step(0.002, fem::Vector::Zero(2)), std::invalid_argument);
   EXPECT_THROW(run.step(0.002, level(1.5)), std::invalid_argument);
   EXPECT_EQ(run.step_count(), 0);  // nothing was stepped
+  // A restart's first levels likewise, refused before the run is touched.
+  ASSERT_TRUE(run.step(0.002, level(0.5)).report.converged);
+  EXPECT_THROW(run.restart(fem::Vector::Zero(2)), std::invalid_argument);
+  EXPECT_THROW(run.restart(level(-0.1)), std::invalid_argument);
+  EXPECT_EQ(run.step_count(), 1);
 
   std::string text = testing::kBoxScene;
   const std::string dynamic = "{type: dynamic, duration: 0.02, dt: 0.002}";
