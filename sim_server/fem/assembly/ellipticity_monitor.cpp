@@ -35,7 +35,8 @@ std::pair<double, Mat3> EllipticityMonitor::centre_state(int e, const Vector& x)
   const Mat3 F = coords(solid_.mesh(), e, x).transpose() * centre_gradients_[e];
   const double J = F.determinant();
   if (!(J > 0.0)) return {-1.0, F};
-  const Mat3 C_bar = std::pow(J, -2.0 / 3.0) * (F.transpose() * F);
+  const double cube_root = std::cbrt(J);  // J^(-2/3) without pow, which took a third of this
+  const Mat3 C_bar = (F.transpose() * F) / (cube_root * cube_root);
   return {(C_bar - Mat3::Identity()).norm(), F};
 }
 

@@ -72,7 +72,7 @@ TEST(Ellipticity, SearchAgreesWithABruteForceOverTheSphere) {
     const double found = check_ellipticity(*m, F).min_eigenvalue;
     // Neither can be far below the other: the grid's spacing (0.9 degrees) bounds its
     // eigenvalue error (second order in the angle, ~1e-4 of |A|); the search ends with a step
-    // below 1e-9 rad, far finer.
+    // below 1e-6 rad (~1e-12 of |A|), far finer.
     EXPECT_NEAR(found, brute, 1e-3 * m->initial_shear_modulus() + 1e-4 * std::abs(brute));
     EXPECT_LE(found, brute + 1e-6 * std::abs(brute));
   }
