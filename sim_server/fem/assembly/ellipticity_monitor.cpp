@@ -1,6 +1,8 @@
 #include "fem/assembly/ellipticity_monitor.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <cstdio>
 
 #include "fem/element/hex8_shape.hpp"
@@ -27,6 +29,14 @@ EllipticityMonitor::EllipticityMonitor(const SolidModel& solid, double screen)
     const hex8::ElementCoords X = coords(solid.mesh(), e, rest);
     centre_gradients_.push_back(dN_dxi * hex8::jacobian(X, Vec3::Zero()).inverse());
   }
+  reset();
+}
+
+void EllipticityMonitor::reset() {
+  reported_ = false;
+  call_ = 0;
+  last_strain_.assign(centre_gradients_.size(), std::numeric_limits<double>::infinity());
+  searched_at_.assign(centre_gradients_.size(), screen_);
 }
 
 // The isochoric strain ||C_bar - I|| at element e's centre and its F; strain < 0 for an
@@ -62,13 +72,28 @@ std::optional<EllipticityLoss> EllipticityMonitor::first_loss(const Vector& u) {
   if (reported_) return std::nullopt;
   const Vector x = solid_.rest_positions() + u;
   const int n = static_cast<int>(centre_gradients_.size());
-  int searches = 0;
-  for (int visited = 0; visited < n && searches < kSearchesPerCall; ++visited) {
-    const int e = next_element_;
-    next_element_ = (next_element_ + 1) % n;
-    if (centre_state(e, x).first <= screen_) continue;  // cheap: no search
-    ++searches;
-    if (auto loss = search(e, x)) {
+  // The screen: an element last seen within half the screen is screened again in its share of
+  // calls only (its strain would have to double in a few steps to matter), the others (and, at
+  // the first call, all) every call.
+  const int share = static_cast<int>(call_++ % kCallsPerRound);
+  candidates_.clear();
+  for (int e = 0; e < n; ++e) {
+    if (last_strain_[e] <= 0.5 * screen_ && e % kCallsPerRound != share) continue;
+    last_strain_[e] = centre_state(e, x).first;
+    if (last_strain_[e] > screen_) candidates_.push_back(e);
+  }
+  // The searches: of the elements screened in, those whose strain grew most since they were
+  // last searched (or since they crossed the screen), the lower element first on a tie.
+  const auto growth = [&](int e) { return last_strain_[e] - searched_at_[e]; };
+  const auto first = [&](int a, int b) {
+    return growth(a) > growth(b) || (growth(a) == growth(b) && a < b);
+  };
+  const auto end = candidates_.begin() +
+                   std::min<std::ptrdiff_t>(kSearchesPerCall, std::ssize(candidates_));
+  std::partial_sort(candidates_.begin(), end, candidates_.end(), first);
+  for (auto it = candidates_.begin(); it != end; ++it) {
+    searched_at_[*it] = last_strain_[*it];
+    if (auto loss = search(*it, x)) {
       reported_ = true;
       return loss;
     }

@@ -29,22 +29,25 @@ class EllipticityMonitor {
   static constexpr double kDefaultScreen = 1.0;
   // Direction searches first_loss may do per call.
   static constexpr int kSearchesPerCall = 4;
+  // first_loss screens the elements last seen strained beyond half the screen every call and
+  // the others in turn, a share per call, so that a round of them takes this many calls:
+  // screening every element every step took a tenth of a full-model step's time on the tongue
+  // (720 elements), twice what the searches took.
+  static constexpr int kCallsPerRound = 4;
 
   explicit EllipticityMonitor(const SolidModel& solid, double screen = kDefaultScreen);
 
   // The element with the most negative eigenvalue among those that lost ellipticity at
   // displacement u (full vector), or nullopt when every element is elliptic.
   std::optional<EllipticityLoss> check(const Vector& u) const;
-  // For a run that warns once: searches at most kSearchesPerCall of the screened elements,
-  // continuing where the previous call stopped, and reports a loss only the first time one is
+  // For a run that warns once: screens the strained elements and a share of the others (see
+  // kCallsPerRound), searches at most kSearchesPerCall of those screened in, those whose strain
+  // grew most since their last search first, and reports a loss only the first time one is
   // found; after that it costs nothing.
   std::optional<EllipticityLoss> first_loss(const Vector& u);
-  // Ready to report again, its round from the first element: a new run (a restart) finds its
-  // loss at the step the first run did.
-  void reset() {
-    reported_ = false;
-    next_element_ = 0;
-  }
+  // Ready to report again, as new: a new run (a restart) finds its loss at the step the first
+  // run did.
+  void reset();
 
  private:
   std::pair<double, Mat3> centre_state(int e, const Vector& x) const;
@@ -53,7 +56,10 @@ class EllipticityMonitor {
   const SolidModel& solid_;
   double screen_;
   bool reported_ = false;
-  int next_element_ = 0;  // where first_loss resumes its round of the screened elements
+  long call_ = 0;  // first_loss calls since the last reset: whose share is screened
+  std::vector<double> last_strain_;  // each element's strain when last screened (inf: not yet)
+  std::vector<double> searched_at_;  // its strain at its last search (the screen: none yet)
+  std::vector<int> candidates_;      // first_loss's elements screened in
   std::vector<Eigen::Matrix<double, 8, 3>> centre_gradients_;  // dN_a/dX at each centre
 };
 
