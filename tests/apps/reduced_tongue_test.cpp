@@ -38,10 +38,11 @@ TEST_F(ReducedTongue, HeldOutRunsStayWithinHalfAMillimetreWhereTheFullModelCanBe
       "'" + scene + "' '" + basis + "' --csv '" + (dir_ / "reduced.csv").string() + "'", dir_);
   ASSERT_EQ(bench.exit_code, 0) << bench.out << bench.err;
   EXPECT_NE(bench.out.find(", 0 failed runs"), std::string::npos) << bench.out;
-  // The aim itself: 0.5 mm (measured with the default training: 0.448 mm, `step IL`; with 6
-  // random mixes instead of 60 and the other defaults, 0.92 mm, and the test fails).
+  // The aim itself: 0.5 mm (measured with the default training: 0.415 mm, `ramp SL`, the worst
+  // of the 14 runs in which the material stays elliptic; with 6 random mixes instead of 60 and
+  // the other defaults, 0.92 mm, and the test fails).
   const double worst =
-      number_after(bench.out, "stays strongly elliptic: 17 of 34, the worst of them ");
+      number_after(bench.out, "stays strongly elliptic: 14 of 34, the worst of them ");
   EXPECT_LE(worst, 0.5) << bench.out;
 }
 

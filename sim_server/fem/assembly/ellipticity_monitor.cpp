@@ -2,8 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <limits>
 #include <cstdio>
+#include <limits>
 
 #include "fem/element/hex8_shape.hpp"
 #include "fem/material/ellipticity.hpp"
@@ -88,8 +88,8 @@ std::optional<EllipticityLoss> EllipticityMonitor::first_loss(const Vector& u) {
   const auto first = [&](int a, int b) {
     return growth(a) > growth(b) || (growth(a) == growth(b) && a < b);
   };
-  const auto end = candidates_.begin() +
-                   std::min<std::ptrdiff_t>(kSearchesPerCall, std::ssize(candidates_));
+  const auto end =
+      candidates_.begin() + std::min<std::ptrdiff_t>(kSearchesPerCall, std::ssize(candidates_));
   std::partial_sort(candidates_.begin(), end, candidates_.end(), first);
   for (auto it = candidates_.begin(); it != end; ++it) {
     searched_at_[*it] = last_strain_[*it];

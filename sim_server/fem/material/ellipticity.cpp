@@ -7,8 +7,8 @@
 namespace tongue::fem {
 namespace {
 
-constexpr int kDirections = 128;  // even spread over the half sphere
-constexpr int kRefinements = 40;  // local pattern-search rounds around the weakest, at most
+constexpr int kDirections = 128;      // even spread over the half sphere
+constexpr int kRefinements = 40;      // local pattern-search rounds around the weakest, at most
 constexpr double kFinestStep = 1e-6;  // [rad] the pattern search's last step
 constexpr double kPi = 3.14159265358979323846;
 
