@@ -18,9 +18,10 @@ Vec3 from_angles(double polar, double azimuth) {
 }
 
 // The search's measure of a direction: Q(N)'s smallest eigenvalue by the closed form for 3 x 3
-// symmetric matrices (Smith 1961, Eigen's computeDirect), about a fifth of the cost of the
-// iterative solver with eigenvectors. Its error (~1e-9 of |Q| where two eigenvalues meet) only
-// steers the search; the weakest direction's eigenpair is computed again exactly at the end.
+// symmetric matrices (Smith 1961, Eigen's computeDirect), cheaper than the iterative solver with
+// eigenvectors. It differs from the iterative solver's by less than 1e-8 of |Q| (20 000 random
+// tangents of mooney_rivlin5, the state at rest among them, where two eigenvalues meet), which
+// only steers the search: the weakest direction's eigenpair is computed iteratively at the end.
 double smallest_eigenvalue(const Mat9& A, const Vec3& N) {
   Eigen::SelfAdjointEigenSolver<Mat3> eig;
   eig.computeDirect(acoustic_tensor(A, N), Eigen::EigenvaluesOnly);
