@@ -37,12 +37,21 @@ int main(int argc, char** argv) {
   int searches = 2000, repeats = 5;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
+    std::size_t used = 0;
+    int value = 0;
     if ((arg == "--searches" || arg == "--repeats") && i + 1 < argc) {
-      (arg == "--searches" ? searches : repeats) = std::max(1, std::stoi(argv[++i]));
-    } else {
-      std::fprintf(stderr, "usage: ellipticity_benchmark [--searches N] [--repeats K]\n");
+      try {
+        value = std::stoi(argv[++i], &used);
+      } catch (const std::exception&) {
+        used = 0;
+      }
+    }
+    if (used == 0 || argv[i][used] != '\0' || value < 1) {
+      std::fprintf(stderr,
+                   "usage: ellipticity_benchmark [--searches N] [--repeats K] (N, K >= 1)\n");
       return 2;
     }
+    (arg == "--searches" ? searches : repeats) = value;
   }
   const auto material = tongue::fem::make_material("mooney_rivlin5", {{"poisson_ratio", 0.49}});
   const struct {
