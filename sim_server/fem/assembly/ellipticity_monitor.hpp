@@ -2,7 +2,7 @@
 // Watches whether a solid's material stays strongly elliptic (fem/material/ellipticity.hpp) as
 // it deforms, so that a run entering a region where its law is unstable says so instead of
 // producing mesh-dependent bands or failing later without a reason. Checked at each element's
-// centre; only elements strained beyond a screen get the direction search (~30 us each), and
+// centre; only elements strained beyond a screen get the direction search (~10 us each), and
 // first_loss spreads those searches over steps (a budget per call, the elements whose strain grew
 // most first), so that a run pays a few tenths of a millisecond per step at most and learns of a
 // loss within a few steps of it.

@@ -22,7 +22,8 @@ struct EllipticityCheck {
 Mat3 acoustic_tensor(const Mat9& A, const Vec3& N);
 
 // Searches the unit sphere for the direction of least stiffness: 128 directions spread evenly
-// over the half sphere (N and -N give the same Q), then a local refinement around the weakest.
+// over the half sphere (N and -N give the same Q), then a local refinement (Newton's method on
+// the direction and the amplitude together) from the weakest few of their local minima.
 EllipticityCheck check_ellipticity(const Material& material, const Mat3& F);
 
 }  // namespace tongue::fem
