@@ -226,7 +226,7 @@ EllipticityCheck check_ellipticity(const Material& material, const Mat3& F) {
       N = candidate;
     }
   }
-  const Eigen::SelfAdjointEigenSolver<Mat3> eig(acoustic_tensor(A, N));
+  const Eigen::SelfAdjointEigenSolver<Mat3> eig(acoustic(N));
   EllipticityCheck c;
   c.min_eigenvalue = eig.eigenvalues()(0);
   c.direction = N;

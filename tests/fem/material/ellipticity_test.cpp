@@ -30,6 +30,22 @@ Mat3 simple_shear(double gamma) {  // x displaced by gamma y
   return F;
 }
 
+// The smallest eigenvalue of Q(N) over a grid of directions: polar angles polar_step * p for
+// p = 0..polar_steps, azimuth_count azimuths evenly round the axis.
+double brute_force_minimum(const Mat9& A, double polar_step, int polar_steps, int azimuth_count) {
+  double lowest = 1e300;
+  for (int p = 0; p <= polar_steps; ++p) {
+    for (int a = 0; a < azimuth_count; ++a) {
+      const double polar = polar_step * p, azimuth = 2 * M_PI * a / azimuth_count;
+      const Vec3 N(std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth),
+                   std::cos(polar));
+      lowest = std::min(
+          lowest, Eigen::SelfAdjointEigenSolver<Mat3>(acoustic_tensor(A, N)).eigenvalues()(0));
+    }
+  }
+  return lowest;
+}
+
 // Largest p in [lo, hi] with the law still elliptic at make_F(p), by bisection (elliptic at lo,
 // not at hi).
 double ellipticity_limit(const Material& m, const std::function<Mat3(double)>& make_F, double lo,
@@ -60,16 +76,7 @@ TEST(Ellipticity, SearchAgreesWithABruteForceOverTheSphere) {
   for (const Mat3& F :
        {uniaxial(1.7), simple_shear(1.2), Mat3(uniaxial(0.6) * simple_shear(0.5))}) {
     const Mat9 A = m->response(F, true).tangent;
-    double brute = 1e300;
-    for (int p = 0; p <= 200; ++p) {
-      for (int a = 0; a < 400; ++a) {
-        const double polar = M_PI * p / 200, azimuth = 2 * M_PI * a / 400;
-        const Vec3 N(std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth),
-                     std::cos(polar));
-        brute = std::min(
-            brute, Eigen::SelfAdjointEigenSolver<Mat3>(acoustic_tensor(A, N)).eigenvalues()(0));
-      }
-    }
+    const double brute = brute_force_minimum(A, M_PI / 200, 200, 400);
     const double found = check_ellipticity(*m, F).min_eigenvalue;
     // Neither can be far below the other: the grid's spacing (0.9 degrees) bounds its
     // eigenvalue error (second order in the angle, ~1e-4 of |A|); the search's refinement ends
@@ -94,16 +101,7 @@ TEST(Ellipticity, SignAgreesWithABruteForceOnRandomDeformations) {
     if (F.determinant() < 0.2) continue;
     ++tried;
     const Mat9 A = m->response(F, true).tangent;
-    double brute = 1e300;
-    for (int p = 0; p <= 60; ++p) {
-      for (int a = 0; a < 120; ++a) {
-        const double polar = M_PI * p / 120, azimuth = 2 * M_PI * a / 120;
-        const Vec3 N(std::sin(polar) * std::cos(azimuth), std::sin(polar) * std::sin(azimuth),
-                     std::cos(polar));
-        brute = std::min(
-            brute, Eigen::SelfAdjointEigenSolver<Mat3>(acoustic_tensor(A, N)).eigenvalues()(0));
-      }
-    }
+    const double brute = brute_force_minimum(A, M_PI / 120, 60, 120);
     const double found = check_ellipticity(*m, F).min_eigenvalue;
     // The grid's spacing (1.5 and 3 degrees) bounds its error at ~3e-3 of |A| (second order in
     // the angle); within that band of zero either sign is right.
