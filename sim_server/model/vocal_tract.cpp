@@ -206,10 +206,12 @@ std::vector<std::shared_ptr<const fem::Obstacle>> make_vocal_tract(const VocalTr
       [&](int r, int c) { return grid.node(wall_begin + r, R, c); },
       [&](int) { return gaps.pharyngeal_wall; });
 
-  return {std::make_shared<const fem::Obstacle>("hard_palate", std::move(palate)),
-          std::make_shared<const fem::Obstacle>("upper_teeth", std::move(teeth)),
-          std::make_shared<const fem::Obstacle>("velum", std::move(velum)),
-          std::make_shared<const fem::Obstacle>("pharyngeal_wall", std::move(wall))};
+  // Offsets of the tongue's smooth rest surface: their normals are interpolated (fem::Normals).
+  const fem::Normals smooth = fem::Normals::smooth;
+  return {std::make_shared<const fem::Obstacle>("hard_palate", std::move(palate), smooth),
+          std::make_shared<const fem::Obstacle>("upper_teeth", std::move(teeth), smooth),
+          std::make_shared<const fem::Obstacle>("velum", std::move(velum), smooth),
+          std::make_shared<const fem::Obstacle>("pharyngeal_wall", std::move(wall), smooth)};
 }
 
 }  // namespace tongue::model

@@ -86,11 +86,13 @@
 //                                  # tongue; or a list of vocal_tract and files:
 //     - vocal_tract
 //     - {name: plate, file: plate.stl, length_scale: 0.001, rotate: [0, 0, 90],
-//        translate: [0, 0.06, 0]}
+//        translate: [0, 0.06, 0], normals: faceted}
 //         # OBJ or STL triangles, path relative to the scene file, normals (right-hand rule)
 //         # toward the solid; length_scale (default 1) turns file units into metres, then
 //         # rotate (degrees about x, then y, then z; default none) and translate (m). No node of
-//         # the solid may start behind an obstacle.
+//         # the solid may start behind an obstacle. normals: faceted (default) or smooth (the
+//         # vertex normals interpolated, for a mesh that samples a smooth surface; fem::Normals).
+//         # The built-in vocal tract's are smooth.
 //   contact: {penalty: 3.0e8, smoothing: 2.0e-5, search_depth: 0.005,
 //             penetration_tolerance: 1.0e-4, max_augmentations: 4}   # optional; needs
 //         # obstacles; the defaults shown (fem::ContactSettings). penalty [Pa/m]: contact
@@ -252,6 +254,7 @@ struct ObstacleFileSpec {
   double length_scale = 1.0;                 // file length unit in metres
   fem::Vec3 rotate_deg = fem::Vec3::Zero();  // degrees about x, then y, then z
   fem::Vec3 translate = fem::Vec3::Zero();   // m
+  fem::Normals normals = fem::Normals::faceted;
 };
 
 struct ObstaclesSpec {

@@ -148,7 +148,8 @@ class Builder {
                                      .toRotationMatrix();
       for (fem::Vec3& v : surface.vertices) v = rotation * (f.length_scale * v) + f.translate;
       try {
-        obstacles.push_back(std::make_shared<const fem::Obstacle>(f.name, std::move(surface)));
+        obstacles.push_back(
+            std::make_shared<const fem::Obstacle>(f.name, std::move(surface), f.normals));
       } catch (const std::invalid_argument& e) {
         fail(path, "obstacle file " + f.path + ": " + e.what());
       }

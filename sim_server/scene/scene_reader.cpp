@@ -844,7 +844,7 @@ class Parser : private common::YamlReader {
         continue;
       }
       expect_map(o, o_path);
-      check_keys(o, o_path, {"name", "file", "length_scale", "rotate", "translate"});
+      check_keys(o, o_path, {"name", "file", "length_scale", "rotate", "translate", "normals"});
       ObstacleFileSpec spec;
       const YAML::Node name_node = required(o, o_path, "name");
       spec.name = name(name_node, child_path(o_path, "name"));
@@ -862,6 +862,14 @@ class Parser : private common::YamlReader {
         spec.rotate_deg = vec3(v, child_path(o_path, "rotate"));
       if (const auto v = o["translate"]; present(v))
         spec.translate = vec3(v, child_path(o_path, "translate"));
+      if (const auto v = o["normals"]; present(v)) {
+        const std::string normals_path = child_path(o_path, "normals");
+        const std::string kind = text(v, normals_path);
+        if (kind == "smooth")
+          spec.normals = fem::Normals::smooth;
+        else if (kind != "faceted")
+          fail(normals_path, "unknown normals '" + kind + "' (known: faceted, smooth)", v);
+      }
       scene.obstacles.files.push_back(std::move(spec));
     }
   }

@@ -36,6 +36,8 @@ TEST_F(SceneObstacles, ReaderRefusesWhatItCannotPlace) {
   expect_parse_error(
       box + "obstacles: [{name: a, file: " + floor + "}, {name: a, file: " + floor + "}]\n",
       "obstacles[1].name", "defined twice");
+  expect_parse_error(box + "obstacles: [{name: a, file: " + floor + ", normals: round}]\n",
+                     "obstacles[0].normals", "unknown normals 'round' (known: faceted, smooth)");
   expect_parse_error(box + "obstacles: [{name: a, file: " + floor + "}]\ncontact: {penalty: -1}\n",
                      "contact.penalty");
   expect_parse_error(box + "obstacles: [{name: a, file: " + floor +
@@ -65,6 +67,13 @@ TEST_F(SceneObstacles, FileIsScaledRotatedAndTranslated) {
   const fem::SurfacePoint below = lid.closest(fem::Vec3(0.02, 0.01, 0.005));
   EXPECT_NEAR(below.distance, 0.005, 1e-15);  // in front of the lid: its normal faces the box
   EXPECT_LT((below.normal - fem::Vec3(0, -1, 0)).norm(), 1e-15);
+  EXPECT_EQ(lid.normals(), fem::Normals::faceted);  // unless the scene says otherwise
+  const BuiltScene smooth = build_scene(
+      parse_scene(std::string(kBox) + "obstacles:\n  - {name: lid, file: " + floor +
+                      ", length_scale: 0.001, rotate: [90, 0, 0], translate: [0, 0.015, 0],"
+                      " normals: smooth}\n",
+                  "", "test.yaml"));
+  EXPECT_EQ(smooth.contact->obstacles().at(0)->normals(), fem::Normals::smooth);
 }
 
 TEST_F(SceneObstacles, SolidStartingBehindAnObstacleIsRefused) {
@@ -108,6 +117,7 @@ analysis: {type: static}
   for (const auto& o : built.contact->obstacles()) names.push_back(o->name());
   EXPECT_EQ(names,
             (std::vector<std::string>{"hard_palate", "upper_teeth", "velum", "pharyngeal_wall"}));
+  for (const auto& o : built.contact->obstacles()) EXPECT_EQ(o->normals(), fem::Normals::smooth);
   EXPECT_EQ(built.contact->settings().penalty, 2.0e8);
   EXPECT_EQ(built.contact->settings().smoothing, 1.0e-5);
   EXPECT_EQ(built.contact->settings().penetration_tolerance, 5.0e-5);

@@ -70,8 +70,8 @@ TrianglePoint closest_on_triangle(const Vec3& p, const Vec3& a, const Vec3& b, c
 
 }  // namespace
 
-Obstacle::Obstacle(std::string name, TriangleSurface surface)
-    : name_(std::move(name)), surface_(std::move(surface)) {
+Obstacle::Obstacle(std::string name, TriangleSurface surface, Normals normals)
+    : name_(std::move(name)), surface_(std::move(surface)), normals_(normals) {
   const auto& V = surface_.vertices;
   const auto& T = surface_.triangles;
   const int nv = static_cast<int>(V.size()), nt = static_cast<int>(T.size());
@@ -182,12 +182,30 @@ double Obstacle::box_distance(const Vec3& x) const {
   return outside.norm();
 }
 
+void Obstacle::smooth_normal(int t, const Vec3& x, SurfacePoint& s) const {
+  // n = sum_i l_i N_i normalized, N_i the triangle's vertex normals and l_i the barycentric
+  // coordinates of the closest point: l_i = (a x e_i) . (point - v_{i+1}) / |a|^2, with a the
+  // triangle's area vector and e_i = v_{i+2} - v_{i+1} its edge opposite vertex i.
+  const auto& tri = surface_.triangles[t];
+  const auto& V = surface_.vertices;
+  const Vec3 area = (V[tri[1]] - V[tri[0]]).cross(V[tri[2]] - V[tri[0]]);
+  Vec3 n = Vec3::Zero();
+  for (int i = 0; i < 3; ++i) {
+    const Vec3 edge = V[tri[(i + 2) % 3]] - V[tri[(i + 1) % 3]];
+    n += area.cross(edge).dot(s.point - V[tri[(i + 1) % 3]]) * vertex_normal_[tri[i]];
+  }
+  s.normal = n.normalized();
+  s.gap = (x - s.point).dot(s.normal);
+  s.curvature = Mat3::Zero();
+}
+
 SurfacePoint Obstacle::closest(const Vec3& x) const {
   const auto hit = index_->tree.closest_point_and_primitive(to_point(x));
   const int t = static_cast<int>(hit.second - index_->triangles.cbegin());
   const auto& tri = surface_.triangles[t];
   const auto& V = surface_.vertices;
   const TrianglePoint on = closest_on_triangle(x, V[tri[0]], V[tri[1]], V[tri[2]]);
+  const bool smooth = normals_ == Normals::smooth;
 
   SurfacePoint s;
   s.triangle = t;
@@ -197,7 +215,8 @@ SurfacePoint Obstacle::closest(const Vec3& x) const {
     // Inside the triangle x - point is along the normal, which is constant there.
     s.valid = true;
     s.normal = face_normal_[t];
-    s.distance = offset.dot(s.normal);
+    s.distance = s.gap = offset.dot(s.normal);
+    if (smooth) smooth_normal(t, x, s);
     return s;
   }
   const bool edge = on.feature == TrianglePoint::Feature::edge;
@@ -207,7 +226,7 @@ SurfacePoint Obstacle::closest(const Vec3& x) const {
   const Vec3& pseudo = edge ? edge_normal_[t][on.index] : vertex_normal_[tri[on.index]];
   const double d = offset.norm();
   const double sign = offset.dot(pseudo) < 0.0 ? -1.0 : 1.0;
-  s.distance = sign * d;
+  s.distance = s.gap = sign * d;
   // On the surface itself the direction of x - point is undefined; the pseudo-normal stands in.
   s.normal = d > on_surface_ ? (sign / d) * offset : pseudo;
   s.curvature = Mat3::Identity() - s.normal * s.normal.transpose();
@@ -215,6 +234,7 @@ SurfacePoint Obstacle::closest(const Vec3& x) const {
     const Vec3 along = (V[tri[(on.index + 2) % 3]] - V[tri[(on.index + 1) % 3]]).normalized();
     s.curvature -= along * along.transpose();
   }
+  if (smooth) smooth_normal(t, x, s);
   return s;
 }
 

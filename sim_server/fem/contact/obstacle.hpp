@@ -25,15 +25,25 @@ struct TriangleSurface {
   std::vector<std::array<int, 3>> triangles;  // vertex indices, counter-clockwise seen from outside
 };
 
+// How an obstacle's surface turns its normal. Faceted: n is the gradient of the distance to the
+// triangles, constant over a triangle and turning about an edge or a vertex as fast as 1/|phi|.
+// Smooth: n is the vertex normals interpolated over the triangle at the closest point (Phong
+// normals), for a surface that samples a smooth one (a palate), so that the direction of a
+// node's contact force turns as slowly as the sampled surface does.
+enum class Normals { faceted, smooth };
+
 // What the closest point of the surface to x says about x.
 struct SurfacePoint {
   bool valid = false;          // false: the closest point lies on the rim of an open surface
   double distance = 0.0;       // signed distance phi [m]: negative inside (behind the surface)
   Vec3 point = Vec3::Zero();   // closest point on the surface [m]
-  Vec3 normal = Vec3::Zero();  // n = grad phi, unit
-  // phi d(n)/dx: zero where the closest point lies inside a triangle (n is that triangle's
-  // normal), I - n n^T - t t^T on an edge of unit direction t, I - n n^T at a vertex. The
-  // Hessian of phi^2 / 2 is n n^T + this.
+  Vec3 normal = Vec3::Zero();  // n, unit: grad phi (faceted), the interpolated normal (smooth)
+  // g = (x - point) . n [m], the gap a contact force acts on: phi faceted; smooth, within a
+  // triangle phi (n . n_face), which differs from phi by the angle between the two normals.
+  double gap = 0.0;
+  // Faceted: phi d(n)/dx, zero where the closest point lies inside a triangle (n is that
+  // triangle's normal), I - n n^T - t t^T on an edge of unit direction t, I - n n^T at a vertex.
+  // The Hessian of phi^2 / 2 is n n^T + this. Zero when smooth.
   Mat3 curvature = Mat3::Zero();
   int triangle = -1;  // the triangle that holds the closest point
 };
@@ -44,7 +54,7 @@ class Obstacle {
   // triangle, an index out of range, a degenerate triangle (area below 1e-12 of the squared
   // bounding-box diagonal), an edge shared by more than two triangles, two neighbours with
   // opposite orientations, or, closed, a negative enclosed volume (normals pointing inward).
-  Obstacle(std::string name, TriangleSurface surface);
+  Obstacle(std::string name, TriangleSurface surface, Normals normals = Normals::faceted);
   ~Obstacle();
   Obstacle(const Obstacle&) = delete;
   Obstacle& operator=(const Obstacle&) = delete;
@@ -52,6 +62,7 @@ class Obstacle {
   const std::string& name() const { return name_; }
   const TriangleSurface& surface() const { return surface_; }
   bool closed() const { return closed_; }
+  Normals normals() const { return normals_; }
   // Corners of the axis-aligned bounding box [m].
   const Vec3& box_min() const { return box_min_; }
   const Vec3& box_max() const { return box_max_; }
@@ -63,9 +74,12 @@ class Obstacle {
 
  private:
   struct Index;  // the CGAL tree, kept out of this header
+  // The smooth normal at s.point of triangle t, and the gap of x along it, into s.
+  void smooth_normal(int t, const Vec3& x, SurfacePoint& s) const;
   std::string name_;
   TriangleSurface surface_;
   bool closed_ = false;
+  Normals normals_ = Normals::faceted;
   Vec3 box_min_, box_max_;
   double on_surface_ = 0.0;  // [m]: closer than this, x counts as on the surface (normal undefined)
   std::vector<Vec3> face_normal_;

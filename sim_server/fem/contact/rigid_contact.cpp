@@ -79,7 +79,7 @@ void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
       } else if (s.distance >= shift) {  // in front
         probe.reach = s.distance - shift;
         probe.in_front = true;
-        probe.phi = s.distance;
+        probe.phi = s.gap;
         probe.normal = s.normal;
       } else {
         probe.reach = s.distance > -depth ? -1.0 : -s.distance - depth;
@@ -95,6 +95,9 @@ void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
 
 RigidContact::Penalty RigidContact::penalty(int i, double p) const {
   const double eps = node_penalty_[i], w = settings_.smoothing;
+  // A smooth normal's gap may lie in front of the surface where the distance is behind it (in
+  // the wedge behind an edge or a vertex, nearly along the surface): no force there.
+  if (!(p > 0.0)) return {0.0, 0.0, 0.0};
   if (p <= w) return {eps * p * p * p / (6.0 * w), eps * p * p / (2.0 * w), eps * p / w};
   return {eps * (p * p / 2.0 - w * p / 2.0 + w * w / 6.0), eps * (p - w / 2.0), eps};
 }
@@ -103,10 +106,11 @@ void RigidContact::add(const Vector& u, double /*load_factor*/, Vector& force,
                        SymmetricMatrix* stiffness) const {
   for_each_contact(u, [&](int i, int o, const SurfacePoint& s) {
     const double shift = shift_[pair(i, o)];
-    const Penalty psi = penalty(i, shift - s.distance);
+    const Penalty psi = penalty(i, shift - s.gap);
     force.segment<3>(3 * nodes_[i]) += psi.force * s.normal;
     if (stiffness != nullptr) {
-      // -psi' dn/dx = -(psi' / phi) C. Without a shift psi' vanishes as phi^2 at the surface;
+      // -psi' dn/dx = -(psi' / phi) C, zero with smooth normals: their tangent is psi'' n n^T
+      // alone (docs/contact.md says why). Without a shift psi' vanishes as phi^2 at the surface;
       // with one, a node near an edge or a vertex would see dn/dx grow without bound as it
       // nears the surface, and |phi| is held at w there (the tangent of such nodes then no
       // longer exact).
@@ -124,7 +128,8 @@ void RigidContact::add_springs(const Vector& u, std::vector<NodeSpring>& springs
   const int num_obstacles = static_cast<int>(obstacles_.size());
   for_each_contact(u, [&](int i, int o, const SurfacePoint& s) {
     const double shift = shift_[pair(i, o)];
-    springs.push_back({nodes_[i], s.normal, penalty(i, shift - s.distance).stiffness, 0.0});
+    const double stiffness = penalty(i, shift - s.gap).stiffness;
+    if (stiffness > 0.0) springs.push_back({nodes_[i], s.normal, stiffness, 0.0});
   });
   const std::lock_guard lock(probes_mutex_);
   for (int i = 0; i < static_cast<int>(nodes_.size()); ++i) {
@@ -143,7 +148,7 @@ ContactReport RigidContact::report(const Vector& u) const {
   ContactReport r;
   r.obstacle_force.assign(obstacles_.size(), Vec3::Zero());
   for_each_contact(u, [&](int i, int o, const SurfacePoint& s) {
-    const Penalty psi = penalty(i, shift_[pair(i, o)] - s.distance);
+    const Penalty psi = penalty(i, shift_[pair(i, o)] - s.gap);
     const Vec3 f = psi.force * s.normal;
     r.contacts.push_back({nodes_[i], o, s.distance, f, s.point});
     r.obstacle_force[o] -= f;
@@ -174,7 +179,7 @@ Augmentation RigidContact::augment(const Vector& u) {
   std::vector<double> next(shift_.size(), 0.0);  // zero for pairs out of contact
   for_each_contact(u, [&](int i, int o, const SurfacePoint& s) {
     deepest = std::max(deepest, -s.distance);
-    next[pair(i, o)] = std::max(0.0, shift_[pair(i, o)] - s.distance - kTargetDepth * tolerance);
+    next[pair(i, o)] = std::max(0.0, shift_[pair(i, o)] - s.gap - kTargetDepth * tolerance);
   });
   if (!(deepest > tolerance)) return Augmentation::held;
   if (augmentations_ >= settings_.max_augmentations) return Augmentation::unmet;
