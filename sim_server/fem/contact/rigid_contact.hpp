@@ -12,9 +12,12 @@
 // penetrates w / 2 + P / kappa (P >= kappa w / 2). The smooth start keeps Newton's iteration from
 // cycling on nodes at the edge of the contact zone, which a force with a kink at p = 0 makes
 // jump between a stiff spring and none (a smoothed penalty in the spirit of Wriggers 2006,
-// sec. 10.3). The consistent tangent is psi'' n n^T + (psi' / p) C, C = phi dn/dx the
-// obstacle's curvature term (zero inside a triangle, obstacle.hpp). A node touching several
-// obstacles gets the sum.
+// sec. 10.3). With faceted normals the consistent tangent is psi'' n n^T + (psi' / p) C,
+// C = phi dn/dx the obstacle's curvature term (zero inside a triangle, obstacle.hpp). With smooth
+// normals (obstacle.hpp's Normals) p is the gap along the interpolated normal n and the tangent
+// psi'' n n^T alone: the force is then not the gradient of an energy, and the symmetric part of
+// its derivative is indefinite where n leans from the facet's normal (docs/contact.md). A node
+// touching several obstacles gets the sum.
 //
 // Augmented Lagrangian (Simo & Laursen 1992, Computers & Structures 42; Wriggers 2006, sec. 6.3):
 // when a step's converged state has a node deeper than the tolerance t, each pair's multiplier
