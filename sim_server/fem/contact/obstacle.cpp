@@ -199,8 +199,12 @@ void Obstacle::smooth_normal(int t, const Vec3& x, SurfacePoint& s) const {
   s.curvature = Mat3::Zero();
 }
 
-SurfacePoint Obstacle::closest(const Vec3& x) const {
-  const auto hit = index_->tree.closest_point_and_primitive(to_point(x));
+SurfacePoint Obstacle::closest(const Vec3& x, int hint_triangle, const Vec3& hint_point) const {
+  const auto hit =
+      hint_triangle < 0
+          ? index_->tree.closest_point_and_primitive(to_point(x))
+          : index_->tree.closest_point_and_primitive(
+                to_point(x), {to_point(hint_point), index_->triangles.cbegin() + hint_triangle});
   const int t = static_cast<int>(hit.second - index_->triangles.cbegin());
   const auto& tri = surface_.triangles[t];
   const auto& V = surface_.vertices;

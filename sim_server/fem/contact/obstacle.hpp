@@ -70,7 +70,10 @@ class Obstacle {
   // skipping the tree query of points far away.
   double box_distance(const Vec3& x) const;
 
-  SurfacePoint closest(const Vec3& x) const;
+  // hint: a triangle near x (its index, -1 for none) and a point on it; the closer it is to the
+  // closest point, the less of the tree the query visits. The result does not depend on it.
+  SurfacePoint closest(const Vec3& x, int hint_triangle = -1,
+                       const Vec3& hint_point = Vec3::Zero()) const;
 
  private:
   struct Index;  // the CGAL tree, kept out of this header

@@ -73,7 +73,9 @@ void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
       const double box = obstacle.box_distance(x);
       probe.reach = obstacle.closed() ? box - shift : box - std::max(depth, shift);
       if (probe.reach > 0.0) continue;
-      const SurfacePoint s = obstacle.closest(x);
+      const SurfacePoint s = obstacle.closest(x, probe.triangle, probe.point);
+      probe.triangle = s.triangle;
+      probe.point = s.point;
       if (!s.valid) {  // beyond an open sheet's rim: in reach once within the depth of it
         probe.reach = (x - s.point).norm() - depth;
       } else if (s.distance >= shift) {  // in front

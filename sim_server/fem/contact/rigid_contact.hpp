@@ -152,8 +152,10 @@ class RigidContact : public ForceContribution {
     Vec3 at = Vec3::Zero();
     double reach = -1.0;    // < 0: query again
     bool in_front = false;  // valid and phi >= 0 at `at`: then phi and normal below
-    double phi = 0.0;
+    double phi = 0.0;       // the gap along the normal (SurfacePoint::gap)
     Vec3 normal = Vec3::Zero();
+    int triangle = -1;  // the closest point at `at`, the next query's hint
+    Vec3 point = Vec3::Zero();
   };
   mutable std::vector<Probe> probes_;  // [candidate * obstacles + obstacle]
   // The contacts found at the last u, by candidate position: a Newton iteration asks for the

@@ -174,6 +174,28 @@ TEST(Obstacle, SmoothNormalTurnsContinuouslyUnderTheSurface) {
   EXPECT_LT(smooth_turn, 5.0 * step / R);
 }
 
+// A hint, near or far, changes only how much of the tree a query visits.
+TEST(Obstacle, HintDoesNotChangeTheClosestPoint) {
+  const Obstacle sphere("sphere", test::icosphere(Vec3(0.001, 0.0, -0.002), 0.02, 3));
+  const int triangles = static_cast<int>(sphere.surface().triangles.size());
+  std::mt19937 rng(13);
+  std::normal_distribution<double> gauss;
+  std::uniform_int_distribution<int> any(0, triangles - 1);
+  for (int k = 0; k < 300; ++k) {
+    const Vec3 x = 0.02 * Vec3(gauss(rng), gauss(rng), gauss(rng));
+    const SurfacePoint plain = sphere.closest(x);
+    const SurfacePoint near = sphere.closest(x + Vec3(1e-5, 0.0, 0.0));  // the last iterate's
+    const int far = any(rng);
+    const Vec3 far_point = sphere.surface().vertices[sphere.surface().triangles[far][0]];
+    for (const SurfacePoint& s :
+         {sphere.closest(x, near.triangle, near.point), sphere.closest(x, far, far_point)}) {
+      EXPECT_EQ(s.distance, plain.distance);
+      EXPECT_EQ(s.point, plain.point);
+      EXPECT_EQ(s.normal, plain.normal);
+    }
+  }
+}
+
 TEST(Obstacle, RefusesWhatIsNotASurface) {
   const auto message = [](TriangleSurface s) {
     try {
