@@ -194,6 +194,8 @@ void Obstacle::smooth_normal(int t, const Vec3& x, SurfacePoint& s) const {
     const Vec3 edge = V[tri[(i + 2) % 3]] - V[tri[(i + 1) % 3]];
     n += area.cross(edge).dot(s.point - V[tri[(i + 1) % 3]]) * vertex_normal_[tri[i]];
   }
+  // Vertex normals that cancel (a surface folded back on itself) leave the faceted normal.
+  if (!(n.norm() > 1e-6 * area.squaredNorm())) return;
   s.normal = n.normalized();
   s.gap = (x - s.point).dot(s.normal);
   s.curvature = Mat3::Zero();
