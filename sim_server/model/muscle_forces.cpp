@@ -70,16 +70,21 @@ double fibre_length(const Fibre& fibre, const Vector& x) {
 }
 
 double fibre_lengthening_rate(const Fibre& fibre, const Vector& x, const Vector& v) {
+  return fibre_kinematics(fibre, x, v).rate;
+}
+
+FibreKinematics fibre_kinematics(const Fibre& fibre, const Vector& x, const Vector& v) {
   // dl/dt = e . (v_to - v_from) per segment; the origin does not move.
-  double rate = 0.0;
+  FibreKinematics k;
   for_each_segment(fibre, x, [&](int from_node, int to_node, const Vec3& from, const Vec3& to) {
     const double l = (to - from).norm();
+    k.length += l;
     if (l == 0.0) return;
     Vec3 dv = v.segment<3>(3 * to_node);
     if (from_node >= 0) dv -= v.segment<3>(3 * from_node);
-    rate += (to - from).dot(dv) / l;
+    k.rate += (to - from).dot(dv) / l;
   });
-  return rate;
+  return k;
 }
 
 MuscleForces::MuscleForces(std::shared_ptr<const fem::SolidModel> solid,
@@ -208,14 +213,23 @@ Vector MuscleForces::muscle_lengths(const Vector& u) const {
 }
 
 Vector MuscleForces::muscle_velocities(const Vector& u, const Vector& v) const {
+  Vector lengths, rates;
+  muscle_kinematics(u, v, lengths, rates);
+  return rates;
+}
+
+void MuscleForces::muscle_kinematics(const Vector& u, const Vector& v, Vector& lengths,
+                                     Vector& velocities) const {
   const Vector x = positions(u);
-  Vector rates = Vector::Zero(num_muscles());
+  lengths = Vector::Zero(num_muscles());
+  velocities = Vector::Zero(num_muscles());
   for (int m = 0; m < num_muscles(); ++m) {
     for (const Fibre& fibre : muscles_[m].fibres) {
-      rates[m] += fibre.weight * fibre_lengthening_rate(fibre, x, v);
+      const FibreKinematics k = fibre_kinematics(fibre, x, v);
+      lengths[m] += fibre.weight * k.length;
+      velocities[m] += fibre.weight * k.rate;
     }
   }
-  return rates;
 }
 
 }  // namespace tongue::model

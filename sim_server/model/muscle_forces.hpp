@@ -29,6 +29,12 @@ double fibre_length(const Fibre& fibre, const fem::Vector& x);
 // Rate of change of that length dL/dt = grad L . v at positions x and nodal velocities v (3 n)
 // [m/s]; positive when the fibre lengthens.
 double fibre_lengthening_rate(const Fibre& fibre, const fem::Vector& x, const fem::Vector& v);
+// Both in one pass over the segments, each the same sum in the same order as the two above.
+struct FibreKinematics {
+  double length = 0.0;  // m
+  double rate = 0.0;    // m/s
+};
+FibreKinematics fibre_kinematics(const Fibre& fibre, const fem::Vector& x, const fem::Vector& v);
 
 class MuscleForces : public fem::ForceContribution {
  public:
@@ -67,6 +73,9 @@ class MuscleForces : public fem::ForceContribution {
   fem::Vector muscle_lengths(const fem::Vector& u) const;
   // Per muscle, the weighted mean of its fibres' dL/dt [m/s] at displacement u and velocity v.
   fem::Vector muscle_velocities(const fem::Vector& u, const fem::Vector& v) const;
+  // muscle_lengths and muscle_velocities in one pass.
+  void muscle_kinematics(const fem::Vector& u, const fem::Vector& v, fem::Vector& lengths,
+                         fem::Vector& velocities) const;
 
  private:
   fem::Vector positions(const fem::Vector& u) const;

@@ -85,8 +85,12 @@ run_file::MuscleFrame scene_muscle_frame(const scene::BuiltScene& built, const f
   if (!built.muscles) return frame;
   const model::MuscleForces& m = *built.muscles;
   frame.activations = m.activations();
-  frame.lengths = m.muscle_lengths(u);
-  frame.velocities = v ? m.muscle_velocities(u, *v) : fem::Vector::Zero(m.num_muscles()).eval();
+  if (v) {
+    m.muscle_kinematics(u, *v, frame.lengths, frame.velocities);
+  } else {
+    frame.lengths = m.muscle_lengths(u);
+    frame.velocities = fem::Vector::Zero(m.num_muscles());
+  }
   return frame;
 }
 
