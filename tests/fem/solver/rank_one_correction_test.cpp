@@ -19,6 +19,7 @@ class ChainOnFloor : public NonlinearProblem {
  public:
   static constexpr int n = 30;
   static constexpr double k = 100.0, kp = 1e5;  // N/m
+  double chain_k = k;  // the springs between the nodes [N/m]
   Vector b = Vector::Zero(n), floor = Vector::Zero(n);
 
   ChainOnFloor() {
@@ -44,8 +45,8 @@ class ChainOnFloor : public NonlinearProblem {
     residual(x, r);
     K.set_zero();
     for (int j = 0; j < n; ++j) {
-      K.values()[pattern_->find(j, j)] = 2.0 * k + (x[j] < floor[j] ? kp : 0.0);
-      if (j > 0) K.values()[pattern_->find(j - 1, j)] = -k;
+      K.values()[pattern_->find(j, j)] = 2.0 * chain_k + (x[j] < floor[j] ? kp : 0.0);
+      if (j > 0) K.values()[pattern_->find(j - 1, j)] = -chain_k;
     }
     return true;
   }
@@ -60,8 +61,8 @@ class ChainOnFloor : public NonlinearProblem {
   Eigen::MatrixXd stiffness() const {
     Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n, n);
     for (int i = 0; i < n; ++i) {
-      A(i, i) = 2.0 * k;
-      if (i > 0) A(i, i - 1) = A(i - 1, i) = -k;
+      A(i, i) = 2.0 * chain_k;
+      if (i > 0) A(i, i - 1) = A(i - 1, i) = -chain_k;
     }
     return A;
   }
@@ -159,6 +160,39 @@ TEST(RankOneCorrection, BfgsPairsAcrossASpringThatEngagedAreLeftOut) {
   EXPECT_EQ(report.factorizations, 1);
   EXPECT_LE(report.iterations, 8);  // as many as without BFGS pairs
   EXPECT_LT((x - chain.exact()).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+// Secant pairs gathered while no spring was engaged describe the chain without them: kept when
+// an iteration engages springs in its linear model, they hold the correction along the springs'
+// directions to the softer response they measured. Here the factor is formed for the chain at
+// half its stiffness, a light load (no contact) gathers pairs that make up for it, and then a
+// heavy load pushes the chain onto the floor.
+TEST(RankOneCorrection, BfgsPairsFromBeforeSpringsEngagedAreNotUsedWithThem) {
+  ChainOnFloor chain;
+  chain.floor.setConstant(-0.2);
+  NewtonSettings settings = reused();
+  settings.quasi_newton_updates = 8;
+  // On this linear chain the secant line search would find the exact step along the stale
+  // factor's direction, and no pair would be needed.
+  settings.line_search = false;
+  NewtonSolver newton(chain.pattern(), settings);
+  Vector x = Vector::Zero(ChainOnFloor::n);
+  chain.b.setConstant(-0.01);
+  ASSERT_TRUE(newton.solve(chain, x).converged);
+  chain.chain_k = 2.0 * ChainOnFloor::k;
+  chain.b.setConstant(-0.05);
+  const NewtonReport light = newton.solve(chain, x);
+  ASSERT_TRUE(light.converged) << light.failure;
+  ASSERT_GT(light.iterations, 1);  // pairs were gathered
+  EXPECT_GT(x.minCoeff(), -0.2);   // without touching the floor
+  chain.b.setConstant(-1.0);
+  const NewtonReport heavy = newton.solve(chain, x);
+  ASSERT_TRUE(heavy.converged) << heavy.failure;
+  EXPECT_EQ(heavy.factorizations, 0);
+  // 11 measured; with the pairs kept the solve did not converge in 40.
+  EXPECT_LE(heavy.iterations, 15);
+  EXPECT_LT((x - chain.exact()).cwiseAbs().maxCoeff(), 1e-9);
+  EXPECT_LT(x.minCoeff(), -0.2);  // springs engaged
 }
 
 }  // namespace
