@@ -19,7 +19,7 @@ class ChainOnFloor : public NonlinearProblem {
  public:
   static constexpr int n = 30;
   static constexpr double k = 100.0, kp = 1e5;  // N/m
-  double chain_k = k;  // the springs between the nodes [N/m]
+  double chain_k = k;                           // the springs between the nodes [N/m]
   Vector b = Vector::Zero(n), floor = Vector::Zero(n);
 
   ChainOnFloor() {
