@@ -39,6 +39,8 @@ constexpr double kCloseStiffness = 4.0;
 // On scenes/tongue_i.yaml with smooth normals, 0.9999 took 96 iterations and 5 factorizations,
 // exact directions 121 and 8 with solves three times as long, 0.99 (8 degrees) 138 and 11.
 constexpr double kSameColumn = 0.9999;
+// An inner product of two columns not taken yet.
+constexpr double kUnknown = std::numeric_limits<double>::quiet_NaN();
 // Rounds of engaging the springs a correction would carry into contact, each a solve more.
 constexpr int kEngageRounds = 3;
 
@@ -95,17 +97,10 @@ void NewtonSolver::add_correction(const RankOneTerm& term, double stiffness) {
   });
   const int column = static_cast<int>(known - columns_.begin());
   if (known == columns_.end()) {
-    SparseColumn w = linear_solver_.forward_sparse(term.index, term.direction);
-    // Its inner products with the columns before it (and itself), through a dense copy.
-    if (scatter_.size() != tangent_.pattern().size)
-      scatter_ = Vector::Zero(tangent_.pattern().size);
-    for (std::size_t e = 0; e < w.rows.size(); ++e) scatter_[w.rows[e]] = w.values[e];
-    std::vector<double> products(columns_.size() + 1);
-    for (std::size_t j = 0; j < columns_.size(); ++j) products[j] = dot(columns_[j].w, scatter_);
-    products.back() = dot(w, scatter_);
-    for (int row : w.rows) scatter_[row] = 0.0;
-    gram_.push_back(std::move(products));
-    columns_.push_back({term.index, term.direction, std::move(w)});
+    // Its inner products with the other columns are taken when a capacitance system needs them.
+    gram_.emplace_back(columns_.size() + 1, kUnknown);
+    columns_.push_back(
+        {term.index, term.direction, linear_solver_.forward_sparse(term.index, term.direction)});
   }
   corrections_.push_back({column, stiffness});
 }
@@ -113,6 +108,25 @@ void NewtonSolver::add_correction(const RankOneTerm& term, double stiffness) {
 void NewtonSolver::update_capacitance() {
   const int k = static_cast<int>(corrections_.size());
   if (k == 0) return;
+  // The inner products of the columns in use not taken yet, through a dense copy of one of
+  // each pair: a column meets only those in use with it, not every column solved for with
+  // the factor (on scenes/tongue_i.yaml about 60 in use of up to 170).
+  if (scatter_.size() != tangent_.pattern().size) scatter_ = Vector::Zero(tangent_.pattern().size);
+  for (const Correction& ci : corrections_) {
+    const SparseColumn& a = columns_[ci.column].w;
+    bool spread = false;
+    for (const Correction& cj : corrections_) {
+      double& product = gram_[ci.column][cj.column];
+      if (cj.column > ci.column || !std::isnan(product)) continue;
+      if (!spread) {
+        for (std::size_t e = 0; e < a.rows.size(); ++e) scatter_[a.rows[e]] = a.values[e];
+        spread = true;
+      }
+      product = dot(columns_[cj.column].w, scatter_);
+    }
+    if (spread)
+      for (int row : a.rows) scatter_[row] = 0.0;
+  }
   Eigen::MatrixXd C(k, k);
   for (int i = 0; i < k; ++i)
     for (int j = 0; j < k; ++j) {

@@ -113,7 +113,7 @@ class NewtonSolver {
     SparseColumn w;  // L^-1 P u
   };
   std::vector<Column> columns_;  // every column of W solved for with this factor
-  // gram_[i][j] = w_i . w_j for j <= i, over columns_.
+  // gram_[i][j] = w_i . w_j for j <= i, over columns_, NaN until a capacitance system needs it.
   std::vector<std::vector<double>> gram_;
   mutable Vector scatter_;  // zero between uses: one column spread out
   struct Correction {
