@@ -221,9 +221,9 @@ void NewtonSolver::engage_candidates(const Vector& r, Vector& dx, NewtonReport& 
     if (!engaged) break;
     // The secant pairs were gathered without these springs: H y = s holds them to the softer
     // response they measured along the springs' directions, and the correction, the springs'
-    // pull from their gaps against it, came out millimetres long where the step is tens of
-    // micrometres (scenes/tongue_i.yaml as the dorsum strikes the palate: line searches cut it
-    // to 2 % and the factor was formed again). Dropped, the factor and its corrections alone
+    // pull from their gaps against it, came out 8 to 17 mm long after one of 0.4 to 2 mm
+    // (scenes/tongue_i.yaml as the dorsum strikes the palate: line searches cut it to 2-5 %
+    // and the factor was formed again). Dropped, the factor and its corrections alone
     // give the direction; the next pairs are gathered with the springs engaged. Correcting each
     // pair's y by the springs' k v (v . s) instead took more iterations and factorizations.
     updates_.clear();
