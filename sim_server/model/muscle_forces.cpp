@@ -69,10 +69,6 @@ double fibre_length(const Fibre& fibre, const Vector& x) {
   return length;
 }
 
-double fibre_lengthening_rate(const Fibre& fibre, const Vector& x, const Vector& v) {
-  return fibre_kinematics(fibre, x, v).rate;
-}
-
 FibreKinematics fibre_kinematics(const Fibre& fibre, const Vector& x, const Vector& v) {
   // dl/dt = e . (v_to - v_from) per segment; the origin does not move.
   FibreKinematics k;
@@ -210,12 +206,6 @@ Vector MuscleForces::muscle_lengths(const Vector& u) const {
       lengths[m] += fibre.weight * fibre_length(fibre, x);
   }
   return lengths;
-}
-
-Vector MuscleForces::muscle_velocities(const Vector& u, const Vector& v) const {
-  Vector lengths, rates;
-  muscle_kinematics(u, v, lengths, rates);
-  return rates;
 }
 
 void MuscleForces::muscle_kinematics(const Vector& u, const Vector& v, Vector& lengths,

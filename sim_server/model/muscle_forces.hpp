@@ -26,13 +26,11 @@ namespace tongue::model {
 
 // Length of a fibre at current positions x (3 n, [m]) [m].
 double fibre_length(const Fibre& fibre, const fem::Vector& x);
-// Rate of change of that length dL/dt = grad L . v at positions x and nodal velocities v (3 n)
-// [m/s]; positive when the fibre lengthens.
-double fibre_lengthening_rate(const Fibre& fibre, const fem::Vector& x, const fem::Vector& v);
-// Both in one pass over the segments, each the same sum in the same order as the two above.
+// The length (the same sum in the same order as fibre_length) and its rate of change
+// dL/dt = grad L . v at positions x and nodal velocities v (3 n), in one pass over the segments.
 struct FibreKinematics {
   double length = 0.0;  // m
-  double rate = 0.0;    // m/s
+  double rate = 0.0;    // m/s, positive when the fibre lengthens
 };
 FibreKinematics fibre_kinematics(const Fibre& fibre, const fem::Vector& x, const fem::Vector& v);
 
@@ -71,9 +69,8 @@ class MuscleForces : public fem::ForceContribution {
   fem::Vector muscle_forces() const;
   // Per muscle, the weighted mean of its fibre lengths [m] at displacement u (3 n).
   fem::Vector muscle_lengths(const fem::Vector& u) const;
-  // Per muscle, the weighted mean of its fibres' dL/dt [m/s] at displacement u and velocity v.
-  fem::Vector muscle_velocities(const fem::Vector& u, const fem::Vector& v) const;
-  // muscle_lengths and muscle_velocities in one pass.
+  // Per muscle, the weighted means of its fibres' lengths (as muscle_lengths) and of their dL/dt
+  // [m/s], at displacement u and velocity v.
   void muscle_kinematics(const fem::Vector& u, const fem::Vector& v, fem::Vector& lengths,
                          fem::Vector& velocities) const;
 

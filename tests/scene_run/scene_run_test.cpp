@@ -74,7 +74,7 @@ TEST(SceneRun, StepTakesTheLevelsAndReturnsTheMuscleFrame) {
   EXPECT_EQ(r.muscles.lengths[0], model::fibre_length(fibre, run.positions()));
   EXPECT_NEAR(r.muscles.lengths[0], 0.02, 1e-3);
   EXPECT_EQ(r.muscles.velocities[0],
-            model::fibre_lengthening_rate(fibre, run.positions(), run.velocity()));
+            model::fibre_kinematics(fibre, run.positions(), run.velocity()).rate);
   EXPECT_NE(r.muscles.velocities[0], 0.0);
   // The frame of the state reached is the one step() returned.
   const run_file::MuscleFrame now = run.muscle_frame();
