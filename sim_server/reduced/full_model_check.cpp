@@ -19,10 +19,9 @@ FullModelCheck::FullModelCheck(const fem::MechanicalSystem& system, fem::Vector 
 
 FullModelCheck::~FullModelCheck() = default;
 
-double FullModelCheck::correction(const fem::Vector& u, const fem::Vector& v,
-                                  const fem::Vector& a, double dt) {
+bool FullModelCheck::prepare(double dt) {
+  if (solver_ && dt == dt_) return true;
   const fem::SolidModel& solid = system_.solid();
-  const fem::DofMap& dofs = solid.dofs();
   const fem::NewmarkParameters& p = settings_.newmark;
   const fem::RayleighDamping& d = settings_.damping;
   if (!stiffness0_) {
@@ -30,26 +29,32 @@ double FullModelCheck::correction(const fem::Vector& u, const fem::Vector& v,
     fem::Vector f;
     if (!solid.assemble(origin_, f, &*stiffness0_).ok) {
       stiffness0_.reset();
-      return kUntrusted;
+      return false;
     }
   }
-  if (!solver_ || dt != dt_) {
-    // S = c0 M + c1 C + K0, C = alpha M + beta_R K0: the full step's tangent at the origin.
-    const double c0 = 1.0 / (p.beta * dt * dt), c1 = p.gamma / (p.beta * dt);
-    fem::SymmetricMatrix s(solid.pattern());
-    s.scale_and_add(0.0, c0 + c1 * d.mass_coefficient, mass_);
-    s.scale_and_add(1.0, 1.0 + c1 * d.stiffness_coefficient, *stiffness0_);
-    solver_ = std::make_unique<fem::CholmodSolver>(solid.pattern());
-    // The correction is an indicator compared with a threshold in millimetres: a factor in
-    // single precision gives it to the micrometre (every run of reduced_benchmark's the same to
-    // 1 um) in 0.40-0.48 ms a solve instead of 0.58-0.65 ms on the tongue.
-    solver_->set_single_precision(true);
-    if (!solver_->factorize(s).ok) {
-      solver_.reset();
-      return kUntrusted;
-    }
-    dt_ = dt;
+  // S = c0 M + c1 C + K0, C = alpha M + beta_R K0: the full step's tangent at the origin.
+  const double c0 = 1.0 / (p.beta * dt * dt), c1 = p.gamma / (p.beta * dt);
+  fem::SymmetricMatrix s(solid.pattern());
+  s.scale_and_add(0.0, c0 + c1 * d.mass_coefficient, mass_);
+  s.scale_and_add(1.0, 1.0 + c1 * d.stiffness_coefficient, *stiffness0_);
+  solver_ = std::make_unique<fem::CholmodSolver>(solid.pattern());
+  // The correction is an indicator compared with a threshold in millimetres: a factor in
+  // single precision gives it to the micrometre (every run of reduced_benchmark's the same to
+  // 1 um) in 0.40-0.48 ms a solve instead of 0.58-0.65 ms on the tongue.
+  solver_->set_single_precision(true);
+  if (!solver_->factorize(s).ok) {
+    solver_.reset();
+    return false;
   }
+  dt_ = dt;
+  return true;
+}
+
+double FullModelCheck::correction(const fem::Vector& u, const fem::Vector& v,
+                                  const fem::Vector& a, double dt) {
+  if (!prepare(dt)) return kUntrusted;
+  const fem::DofMap& dofs = system_.solid().dofs();
+  const fem::RayleighDamping& d = settings_.damping;
   fem::Vector r;
   if (!system_.residual(u, 1.0, r, nullptr).ok) return kUntrusted;
   const fem::Vector free_v = dofs.gather_free(v);

@@ -5,7 +5,7 @@
 // a step of dt at the basis' origin (c0 M + c1 C + K0, C = alpha M + beta_R K0), as its largest
 // nodal component [m]: zero for a state of the full model, and what the basis cannot represent
 // otherwise. Costs one full residual and one solve; S is factorized, in single precision, at
-// the first call and when dt changes.
+// the first call and when dt changes, or ahead of them (prepare).
 #include <memory>
 #include <optional>
 
@@ -22,6 +22,11 @@ class FullModelCheck {
   FullModelCheck(const fem::MechanicalSystem& system, fem::Vector origin,
                  fem::DynamicSettings settings);
   ~FullModelCheck();
+
+  // Assembles K0 and factorizes S for steps of dt [s], unless done already for that dt; false
+  // where S cannot be had (an inverted element at the origin, S not positive definite).
+  // correction() calls it; calling it ahead of the first check takes that cost off the check.
+  bool prepare(double dt);
 
   // The correction [m] at displacement u, velocity v and acceleration a (full vectors) reached
   // by a step of dt [s]; infinity (never NaN) where the full model cannot judge the state: an

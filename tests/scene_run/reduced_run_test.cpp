@@ -62,7 +62,8 @@ TEST_F(ReducedRun, FollowsTheFullModelAndChecksItself) {
   // Both start from the settled state: the basis' origin is that state.
   EXPECT_LT((reduced.displacement() - full.displacement()).cwiseAbs().maxCoeff(), 1e-15);
   // The check's own computation on the run's thread, on a build of its own whose muscles take
-  // each checked state's levels: what the watch must deliver, to the bit.
+  // each checked state's levels: what the watch must deliver, to the bit (the watch's factor is
+  // made ahead, while the run settles; this one's at its first check).
   const scene::BuiltScene own = scene::build_scene(full_scene);
   reduced::FullModelCheck check(*own.system, reduced.reduced_basis()->origin,
                                 own.dynamic_settings);
