@@ -50,8 +50,8 @@ bool FullModelCheck::prepare(double dt) {
   return true;
 }
 
-double FullModelCheck::correction(const fem::Vector& u, const fem::Vector& v,
-                                  const fem::Vector& a, double dt) {
+double FullModelCheck::correction(const fem::Vector& u, const fem::Vector& v, const fem::Vector& a,
+                                  double dt) {
   if (!prepare(dt)) return kUntrusted;
   const fem::DofMap& dofs = system_.solid().dofs();
   const fem::RayleighDamping& d = settings_.damping;

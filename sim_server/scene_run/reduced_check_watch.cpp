@@ -5,8 +5,7 @@
 namespace tongue::scene_run {
 
 ReducedCheckWatch::ReducedCheckWatch(const scene::Scene& scene, const fem::Vector& origin)
-    : built_(scene::build_scene(scene)),
-      full_(*built_.system, origin, built_.dynamic_settings) {
+    : built_(scene::build_scene(scene)), full_(*built_.system, origin, built_.dynamic_settings) {
   // The check's factor for the scene's dt, made while the run is being set up (settling the
   // full model) rather than by the first check, which a step would then wait for (about 30 ms
   // on the tongue). A failure here is the first check's to report.

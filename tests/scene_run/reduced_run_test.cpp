@@ -65,8 +65,7 @@ TEST_F(ReducedRun, FollowsTheFullModelAndChecksItself) {
   // each checked state's levels: what the watch must deliver, to the bit (the watch's factor is
   // made ahead, while the run settles; this one's at its first check).
   const scene::BuiltScene own = scene::build_scene(full_scene);
-  reduced::FullModelCheck check(*own.system, reduced.reduced_basis()->origin,
-                                own.dynamic_settings);
+  reduced::FullModelCheck check(*own.system, reduced.reduced_basis()->origin, own.dynamic_settings);
   std::map<std::int64_t, double> expected;  // by the checked state's step
   double error = 0.0, motion = 0.0, largest_correction = 0.0;
   int reports = 0;
