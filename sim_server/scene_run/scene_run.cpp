@@ -76,6 +76,7 @@ void SceneRun::restart(const fem::Vector& first_levels) {
   clock_ = StepClock{};
   step_ = 0;
   ellipticity_.rearm();
+  ellipticity_.check_every(reduced_now() ? kReducedEllipticityEvery : 1);
   if (reduced_watch_) reduced_watch_->collect();  // the last run's, which finish_checks() takes
   reduced_warned_ = false;
   reduced_correction_ = 0.0;
@@ -134,8 +135,8 @@ void SceneRun::check_reduced(StepResult& result, double dt) {
   const scene::ModelSpec& model = scene_.model;
   auto* reduced = dynamic_cast<reduced::ReducedIntegrator*>(integrator_.get());
   if (!reduced || !reduced_watch_ || step_ % model.check_every != 0) return;
-  result.reduced_check = reduced_watch_->check(u_, v_, reduced->acceleration(), levels_, dt,
-                                               step_, time_);
+  result.reduced_check =
+      reduced_watch_->check(u_, v_, reduced->acceleration(), levels_, dt, step_, time_);
   // A switch starts from the state that called for it: its check is waited for.
   if (model.switch_to_full) result.reduced_check = reduced_watch_->collect();
   if (!result.reduced_check) return;
@@ -148,6 +149,7 @@ void SceneRun::check_reduced(StepResult& result, double dt) {
   full->initialize(u_, v_, a, time_, initial_u_);
   full->prepare(scene_.analysis.dt);
   integrator_ = std::move(full);
+  ellipticity_.check_every(1);
 }
 
 std::optional<std::string> SceneRun::take_reduced_check(const ReducedCheck& check) {

@@ -52,8 +52,9 @@ struct StepResult {
   // The first loss of strong ellipticity of the material, reported once per run (again after a
   // restart, at the same step when the run repeats). It is checked off the step's critical path
   // (EllipticityWatch), so it comes one step late: the result of step k + 1 (converged or not)
-  // reports a loss in the state of step k, and finish_checks() one in the last state. The finding
-  // names its step.
+  // reports a loss in the state of step k, and finish_checks() one in the last state. A reduced
+  // model's states are checked every kReducedEllipticityEvery-th step, each finding reported with
+  // the next checked step's result. The finding names its step.
   std::optional<EllipticityFinding> ellipticity_loss;
   // With a reduced model, on the steps a check is reported: the error indicator of the state it
   // checked (that of step reduced_check->step, check_every steps back; this step's own with
@@ -107,6 +108,12 @@ class SceneRun {
   // levels (/ai/'s first step: 0.002 at most), which the start-up factor serves as well as a
   // fresh one; forming it again there would cost a factorization (about 7 ms) per run.
   static constexpr double kFreshFirstFactor = 0.01;
+
+  // Every how many steps a reduced model's state has its material checked. The check (a few
+  // tenths of a millisecond on the tongue, most of it four direction searches) takes longer than
+  // a reduced step (about 0.13 ms), which waited for it: 80 us of a 210 us step on a run that
+  // stays elliptic. A loss is found at most this many steps late.
+  static constexpr int kReducedEllipticityEvery = 4;
 
   // Advances by dt [s] with the activation levels [1] of every muscle (num_muscles() entries,
   // each in [0, 1]; callers validate them with their own messages first) acting during the step.
@@ -165,7 +172,7 @@ class SceneRun {
   fem::Vector u_, v_;  // m, m/s: the last accepted state (a failed step may leave the
                        // integrator at a substep)
   double time_ = 0.0;  // s
-  StepClock clock_;   // time_ as a count of steps
+  StepClock clock_;    // time_ as a count of steps
   fem::Vector levels_;
   fem::Vector factor_levels_;    // the levels the first step's factor was formed with
   run_file::MuscleFrame frame_;  // of u_, v_ and levels_

@@ -1,11 +1,13 @@
 // EllipticityWatch: the findings of first_loss called in the caller's thread, each delivered by
-// the next call, whatever the worker's timing; collect() gives the last state's.
+// the next call, whatever the worker's timing; collect() gives the last state's. With
+// check_every(n) only every n-th step's state is checked, and the last one handed over.
 #include "scene_run/ellipticity_watch.hpp"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include "fem/material/material_factory.hpp"
@@ -132,6 +134,54 @@ TEST(EllipticityWatch, RearmedItReportsTheNextRunsLossAtTheSameStep) {
   const std::optional<EllipticityFinding> left = watch.check(bar(b.mesh, 0.12, 1.0), 1, 0.004);
   ASSERT_TRUE(left);
   EXPECT_EQ(left->step, 7);
+}
+
+// The bar loses ellipticity in state 5 (ReportsFirstLossOfEachStateWithTheNextCall); checking
+// every fourth state, the watch finds it in state 8 and reports it with step 12's call, the
+// calls between returning nothing and waiting for nothing.
+TEST(EllipticityWatch, CheckingEveryFourthStateFindsTheLossAtTheNextOne) {
+  const Bar b;
+  const std::vector<Vector> states = b.states();
+  EllipticityWatch watch(b.solid);
+  watch.check_every(4);
+  std::optional<EllipticityFinding> finding;
+  int reported_by = 0;
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    const int step = static_cast<int>(k) + 1;
+    if (auto f = watch.check(states[k], step, 0.004 * step)) {
+      ASSERT_FALSE(finding) << "one finding per watch";
+      finding = f;
+      reported_by = step;
+    }
+  }
+  ASSERT_TRUE(finding);
+  EXPECT_EQ(finding->step, 8);
+  EXPECT_DOUBLE_EQ(finding->time, 0.032);
+  EXPECT_EQ(reported_by, 12);
+  EXPECT_FALSE(watch.collect());  // state 14, unchecked by its call, adds nothing after a loss
+  EXPECT_THROW(watch.check_every(0), std::invalid_argument);
+}
+
+// A loss in a state that check_every left unchecked, the last one handed over, is found by
+// collect(), or, after a rearm, delivered by the next call.
+TEST(EllipticityWatch, CollectChecksTheLastStateCheckEveryLeft) {
+  const Bar b;
+  const Vector elliptic = bar(b.mesh, 0.12, 1.0), lost = bar(b.mesh, -0.01, 1.8);
+  EllipticityWatch watch(b.solid);
+  watch.check_every(4);
+  for (int step = 1; step <= 6; ++step) EXPECT_FALSE(watch.check(elliptic, step, 0.004 * step));
+  EXPECT_FALSE(watch.check(lost, 7, 0.028));
+  const std::optional<EllipticityFinding> f = watch.collect();
+  ASSERT_TRUE(f);
+  EXPECT_EQ(f->step, 7);
+  EXPECT_FALSE(watch.collect());  // taken once
+
+  watch.rearm();
+  EXPECT_FALSE(watch.check(lost, 3, 0.012));
+  watch.rearm();
+  const std::optional<EllipticityFinding> left = watch.check(elliptic, 4, 0.016);
+  ASSERT_TRUE(left);
+  EXPECT_EQ(left->step, 3);
 }
 
 TEST(EllipticityWatch, AnEllipticRunReportsNothing) {
