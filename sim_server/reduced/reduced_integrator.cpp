@@ -38,6 +38,21 @@ void multiply(const Eigen::MatrixXd& A, bool transpose, const fem::Vector& x, do
               beta, y.data(), 1);
 }
 
+// The same with the basis held in single precision (OpenBLAS's sgemv, 8-10 us against 16-18 us for
+// dgemv on the tongue's 2464 x 65 free rows: half the bytes to read).
+void multiply(const Eigen::MatrixXf& A, bool transpose, const fem::Vector& x, double beta,
+              fem::Vector& y) {
+  const Eigen::VectorXf xf = x.cast<float>();
+  Eigen::VectorXf yf(transpose ? A.cols() : A.rows());
+  cblas_sgemv(CblasColMajor, transpose ? CblasTrans : CblasNoTrans, static_cast<int>(A.rows()),
+              static_cast<int>(A.cols()), 1.0f, A.data(), static_cast<int>(A.rows()), xf.data(), 1,
+              0.0f, yf.data(), 1);
+  if (beta == 0.0)
+    y = yf.cast<double>();
+  else
+    y = beta * y + yf.cast<double>();
+}
+
 }  // namespace
 
 // One step's Newmark updates in reduced coordinates (Bathe 1996, sec. 9.2.4).
@@ -78,6 +93,7 @@ ReducedIntegrator::ReducedIntegrator(const fem::MechanicalSystem& system, Reduce
   }
   phi_free_.resize(dofs.num_free(), phi_.cols());
   for (Eigen::Index j = 0; j < phi_.cols(); ++j) phi_free_.col(j) = dofs.gather_free(phi_.col(j));
+  if (settings_.newton.single_precision_solve) phi_free_single_ = phi_free_.cast<float>();
   projector_ = GalerkinProjector(*solid.pattern(), dofs, phi_);
   weights_.assign(static_cast<std::size_t>(solid.mesh().num_elements()), 0.0);
   for (std::size_t j = 0; j < basis.sample_elements.size(); ++j)
@@ -91,7 +107,9 @@ ReducedIntegrator::ReducedIntegrator(const fem::MechanicalSystem& system, Reduce
   if (!solid.assemble(origin_, whole, nullptr).ok ||
       !solid.add_weighted(origin_, weights_, sampled, nullptr).ok)
     throw std::invalid_argument("reduced model: the basis' origin inverts an element");
-  origin_correction_ = phi_.transpose() * (whole - sampled);
+  // Projected as each iteration's residual is, so that the two cancel at the origin.
+  origin_correction_ = fem::Vector::Zero(phi_.cols());
+  project_free(dofs.gather_free(whole - sampled), origin_correction_);
   const int k = num_modes();
   q_ = qd_ = qdd_ = fem::Vector::Zero(k);
   reconstruct();
@@ -110,6 +128,13 @@ void ReducedIntegrator::reconstruct() {
   a_ = full.col(2);
 }
 
+void ReducedIntegrator::project_free(const fem::Vector& r_free, fem::Vector& f) const {
+  if (phi_free_single_.size() > 0)
+    multiply(phi_free_single_, true, r_free, 1.0, f);
+  else
+    multiply(phi_free_, true, r_free, 1.0, f);
+}
+
 fem::Vector ReducedIntegrator::displacement_of(const fem::Vector& q) const {
   fem::Vector u = origin_;
   multiply(phi_, false, q, 1.0, u);
@@ -122,7 +147,7 @@ bool ReducedIntegrator::reduced_force(const fem::Vector& u, fem::Vector& f, fem:
   if (!system_.residual(u, 1.0, r, K, load_norm, &weights_).ok) return false;
   // Over the free dofs only: the modes are zero at the prescribed ones.
   f = origin_correction_;
-  multiply(phi_free_, true, system_.solid().dofs().gather_free(r), 1.0, f);
+  project_free(system_.solid().dofs().gather_free(r), f);
   return f.allFinite();
 }
 
@@ -310,7 +335,10 @@ bool ReducedIntegrator::advance(double dt, fem::StepReport& report, int depth) {
     // The error left, as the full solver estimates it (newton_solver.hpp), in the nodes'
     // displacement.
     fem::Vector change(phi_free_.rows());
-    multiply(phi_free_, false, dq, 0.0, change);
+    if (phi_free_single_.size() > 0)
+      multiply(phi_free_single_, false, dq, 0.0, change);
+    else
+      multiply(phi_free_, false, dq, 0.0, change);
     const std::vector<int>& free = system_.solid().dofs().free_dofs();
     for (std::size_t i = 0; i < free.size(); ++i)
       u[free[i]] += change[static_cast<Eigen::Index>(i)];

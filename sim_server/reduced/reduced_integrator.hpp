@@ -14,7 +14,10 @@
 // active stiffening among them, are evaluated on the whole reconstructed displacement and projected
 // exactly; the sample's force is corrected by a constant, its difference from the mesh's at the
 // origin, so that the origin stays an equilibrium. The modes are zero at the prescribed dofs (every
-// snapshot is), so u keeps the origin's prescribed values.
+// snapshot is), so u keeps the origin's prescribed values. When the scene's solver solves in
+// single precision (newton.single_precision_solve, the dynamic default), so do the two products
+// with the basis of every iteration (Phi^T r, Phi dq): their round-off (about 1e-7 of the
+// magnitudes summed) moves the converged state by far less than the step's tolerance.
 #include <Eigen/Cholesky>
 #include <memory>
 #include <optional>
@@ -64,6 +67,8 @@ class ReducedIntegrator : public fem::TimeIntegrator {
  private:
   struct Step;
   bool advance(double dt, fem::StepReport& report, int depth);
+  // f += Phi^T r over the free dofs, in the products' precision.
+  void project_free(const fem::Vector& r_free, fem::Vector& f) const;
   // origin + Phi q [m].
   fem::Vector displacement_of(const fem::Vector& q) const;
   // Phi^T r(u) with the sample's weights, u the full displacement; false at an inverted element.
@@ -81,7 +86,10 @@ class ReducedIntegrator : public fem::TimeIntegrator {
   Eigen::MatrixXd phi_;  // all dofs x k
   fem::Vector origin_;   // the basis' origin, full vector [m]
   int num_sampled_ = 0;
-  Eigen::MatrixXd phi_free_;       // free dofs x k
+  Eigen::MatrixXd phi_free_;  // free dofs x k
+  // phi_free_ in single precision, for the products of every iteration when the scene's solver
+  // solves in single precision (newton.single_precision_solve); empty otherwise.
+  Eigen::MatrixXf phi_free_single_;
   GalerkinProjector projector_;    // Phi^T A Phi
   std::vector<double> weights_;    // per element: the sample's weight, 0 elsewhere
   fem::Vector origin_correction_;  // Phi^T (f_int - f_int of the sample) at the origin
