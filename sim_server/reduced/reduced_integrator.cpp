@@ -135,6 +135,15 @@ void ReducedIntegrator::project_free(const fem::Vector& r_free, fem::Vector& f) 
     multiply(phi_free_, true, r_free, 1.0, f);
 }
 
+fem::Vector ReducedIntegrator::expand_free(const fem::Vector& dq) const {
+  fem::Vector change(phi_free_.rows());
+  if (phi_free_single_.size() > 0)
+    multiply(phi_free_single_, false, dq, 0.0, change);
+  else
+    multiply(phi_free_, false, dq, 0.0, change);
+  return change;
+}
+
 fem::Vector ReducedIntegrator::displacement_of(const fem::Vector& q) const {
   fem::Vector u = origin_;
   multiply(phi_, false, q, 1.0, u);
@@ -334,11 +343,7 @@ bool ReducedIntegrator::advance(double dt, fem::StepReport& report, int depth) {
     x += dq;
     // The error left, as the full solver estimates it (newton_solver.hpp), in the nodes'
     // displacement.
-    fem::Vector change(phi_free_.rows());
-    if (phi_free_single_.size() > 0)
-      multiply(phi_free_single_, false, dq, 0.0, change);
-    else
-      multiply(phi_free_, false, dq, 0.0, change);
+    const fem::Vector change = expand_free(dq);
     const std::vector<int>& free = system_.solid().dofs().free_dofs();
     for (std::size_t i = 0; i < free.size(); ++i)
       u[free[i]] += change[static_cast<Eigen::Index>(i)];

@@ -67,8 +67,9 @@ class ReducedIntegrator : public fem::TimeIntegrator {
  private:
   struct Step;
   bool advance(double dt, fem::StepReport& report, int depth);
-  // f += Phi^T r over the free dofs, in the products' precision.
+  // f += Phi^T r and Phi dq over the free dofs, in the products' precision.
   void project_free(const fem::Vector& r_free, fem::Vector& f) const;
+  fem::Vector expand_free(const fem::Vector& dq) const;
   // origin + Phi q [m].
   fem::Vector displacement_of(const fem::Vector& q) const;
   // Phi^T r(u) with the sample's weights, u the full displacement; false at an inverted element.

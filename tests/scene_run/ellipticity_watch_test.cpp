@@ -51,6 +51,25 @@ struct Bar {
   }
 };
 
+// The states handed to the watch as steps 1, 2, ... 4 ms apart: the one finding and the step
+// whose call returned it.
+struct Reported {
+  std::optional<EllipticityFinding> finding;
+  int by = 0;
+};
+Reported hand_over(EllipticityWatch& watch, const std::vector<Vector>& states) {
+  Reported r;
+  for (std::size_t k = 0; k < states.size(); ++k) {
+    const int step = static_cast<int>(k) + 1;
+    if (auto f = watch.check(states[k], step, 0.004 * step)) {
+      EXPECT_FALSE(r.finding) << "one finding per watch";
+      r.finding = f;
+      r.by = step;
+    }
+  }
+  return r;
+}
+
 TEST(EllipticityWatch, ReportsFirstLossOfEachStateWithTheNextCall) {
   const Bar b;
   const std::vector<Vector> states = b.states();
@@ -69,16 +88,7 @@ TEST(EllipticityWatch, ReportsFirstLossOfEachStateWithTheNextCall) {
   ASSERT_GE(*found_at, 5);
 
   EllipticityWatch watch(b.solid);
-  std::optional<EllipticityFinding> finding;
-  int reported_by = 0;  // the call (a step) whose return carried the finding
-  for (std::size_t k = 0; k < states.size(); ++k) {
-    const int step = static_cast<int>(k) + 1;
-    if (auto f = watch.check(states[k], step, 0.004 * step)) {
-      ASSERT_FALSE(finding) << "one finding per watch";
-      finding = f;
-      reported_by = step;
-    }
-  }
+  const auto [finding, reported_by] = hand_over(watch, states);
   EXPECT_FALSE(watch.collect());  // the finding came with a check, not left over
   ASSERT_TRUE(finding);
   EXPECT_EQ(finding->step, *found_at);
@@ -111,18 +121,10 @@ TEST(EllipticityWatch, RearmedItReportsTheNextRunsLossAtTheSameStep) {
   const Bar b;
   const std::vector<Vector> states = b.states();
   EllipticityWatch watch(b.solid);
-  const auto run = [&] {
-    std::optional<EllipticityFinding> finding;
-    for (std::size_t k = 0; k < states.size(); ++k) {
-      const int step = static_cast<int>(k) + 1;
-      if (auto f = watch.check(states[k], step, 0.004 * step)) finding = f;
-    }
-    return finding;
-  };
-  const std::optional<EllipticityFinding> first = run();
+  const std::optional<EllipticityFinding> first = hand_over(watch, states).finding;
   ASSERT_TRUE(first);
   watch.rearm();
-  const std::optional<EllipticityFinding> again = run();
+  const std::optional<EllipticityFinding> again = hand_over(watch, states).finding;
   ASSERT_TRUE(again);
   EXPECT_EQ(again->step, first->step);
   EXPECT_EQ(again->loss.element, first->loss.element);
@@ -144,16 +146,7 @@ TEST(EllipticityWatch, CheckingEveryFourthStateFindsTheLossAtTheNextOne) {
   const std::vector<Vector> states = b.states();
   EllipticityWatch watch(b.solid);
   watch.check_every(4);
-  std::optional<EllipticityFinding> finding;
-  int reported_by = 0;
-  for (std::size_t k = 0; k < states.size(); ++k) {
-    const int step = static_cast<int>(k) + 1;
-    if (auto f = watch.check(states[k], step, 0.004 * step)) {
-      ASSERT_FALSE(finding) << "one finding per watch";
-      finding = f;
-      reported_by = step;
-    }
-  }
+  const auto [finding, reported_by] = hand_over(watch, states);
   ASSERT_TRUE(finding);
   EXPECT_EQ(finding->step, 8);
   EXPECT_DOUBLE_EQ(finding->time, 0.032);
