@@ -109,10 +109,11 @@ class SceneRun {
   // fresh one; forming it again there would cost a factorization (about 7 ms) per run.
   static constexpr double kFreshFirstFactor = 0.01;
 
-  // Every how many steps a reduced model's state has its material checked. The check (a few
-  // tenths of a millisecond on the tongue, most of it four direction searches) takes longer than
-  // a reduced step (about 0.13 ms), which waited for it: 80 us of a 210 us step on a run that
-  // stays elliptic. A loss is found at most this many steps late.
+  // Every how many steps a reduced model's state has its material checked. A check takes about
+  // 40 us on its thread, but a reduced step (about 0.13 ms on the tongue) handing over every
+  // state waited for that thread to get the second core, which the error check (0.8 ms every
+  // 10 steps) and the run file's writer share: 80 us of a 210 us step on a run that stays
+  // elliptic. A loss is found at most this many steps late.
   static constexpr int kReducedEllipticityEvery = 4;
 
   // Advances by dt [s] with the activation levels [1] of every muscle (num_muscles() entries,
