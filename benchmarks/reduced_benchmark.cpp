@@ -2,12 +2,12 @@
 // paper's experiments as forces (SG 3 N, GGp 4 N, SL 1 N, each rising over 30 ms and held) and
 // every muscle at full force, then held-out activation sequences (reduced::training_sequences'
 // shapes with levels from another seed: each muscle group stepped and ramped, pairs of groups,
-// random mixes), each run by the
-// scene's full model and by its reduced model (the basis given), both through SceneRun from the
-// settled state. Per run and in all: the nodal error of the reduced model against the full one
+// random mixes), each run by the scene's full model and then by its reduced model (the basis
+// given), both through SceneRun from the settled state, each timed on its own. Per run and in all: the nodal error of the reduced model against the full one
 // (RMS over nodes and steps, largest), each model's stepping time and real-time factor, Newton
 // iterations per step, the error indicator at its largest (checked every model.check_every
-// steps, as a scene does), and whether the full model's material lost strong ellipticity.
+// steps, as a scene does), and whether the full model's material lost strong ellipticity; in all,
+// also the reduced model's tangent formations (and their time) and step cuts.
 //
 // Usage: reduced_benchmark SCENE BASIS... [--csv FILE] [--seed N] [--pairs N] [--mixes N]
 //                          [--duration S]
@@ -39,6 +39,10 @@ struct Totals {
   double squared_error = 0.0, max_error = 0.0, max_indicator = 0.0;
   double full_s = 0.0, reduced_s = 0.0, simulated_s = 0.0;
   long nodes_steps = 0, steps = 0, full_iterations = 0, reduced_iterations = 0, failures = 0;
+  // The reduced model's tangents formed (and their time) and step cuts: where its time goes
+  // beyond its iterations.
+  long reduced_tangents = 0, reduced_cuts = 0;
+  double reduced_tangent_s = 0.0;
   bool lost_ellipticity = false;  // the full model's material, in this run
 };
 
@@ -151,6 +155,9 @@ BasisRow evaluate(const scene::Scene& full_scene, const std::string& basis_path,
         break;
       }
       run.reduced_iterations += r.report.iterations;
+      run.reduced_tangents += r.report.factorizations;
+      run.reduced_tangent_s += r.report.factorization_seconds;
+      run.reduced_cuts += r.report.cuts;
       const fem::Vector d = reduced.displacement() - full_u[k];
       for (int a = 0; a < nodes; ++a) {
         const double e2 = d.segment<3>(3 * a).squaredNorm();
@@ -183,6 +190,9 @@ BasisRow evaluate(const scene::Scene& full_scene, const std::string& basis_path,
     all.steps += run.steps;
     all.full_iterations += run.full_iterations;
     all.reduced_iterations += run.reduced_iterations;
+    all.reduced_tangents += run.reduced_tangents;
+    all.reduced_tangent_s += run.reduced_tangent_s;
+    all.reduced_cuts += run.reduced_cuts;
     all.failures += run.failures;
     if (!run.lost_ellipticity) {
       ++row.stable_runs;
@@ -197,10 +207,11 @@ BasisRow evaluate(const scene::Scene& full_scene, const std::string& basis_path,
   row.stable_worst_rms_mm = 1e3 * stable_worst_rms;
   std::printf(
       "all: RMS %.3f mm, max %.3f mm; full model RTF %.2f (%.2f it/step), reduced RTF %.2f "
-      "(%.2f it/step), %ld failed runs; largest indicator %.3f mm\n",
+      "(%.2f it/step; %ld tangents formed, %.3f s; %ld cuts), %ld failed runs; largest "
+      "indicator %.3f mm\n",
       row.rms_mm, row.max_mm, row.full_rtf, double(all.full_iterations) / std::max(1L, all.steps),
-      row.rtf, double(all.reduced_iterations) / std::max(1L, all.steps), all.failures,
-      1e3 * all.max_indicator);
+      row.rtf, double(all.reduced_iterations) / std::max(1L, all.steps), all.reduced_tangents,
+      all.reduced_tangent_s, all.reduced_cuts, all.failures, 1e3 * all.max_indicator);
   std::printf(
       "runs in which the full model's material stays strongly elliptic: %d of %d, the "
       "worst of them %.3f mm RMS\n\n",
