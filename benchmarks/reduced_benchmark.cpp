@@ -3,11 +3,12 @@
 // every muscle at full force, then held-out activation sequences (reduced::training_sequences'
 // shapes with levels from another seed: each muscle group stepped and ramped, pairs of groups,
 // random mixes), each run by the scene's full model and then by its reduced model (the basis
-// given), both through SceneRun from the settled state, each timed on its own. Per run and in all: the nodal error of the reduced model against the full one
-// (RMS over nodes and steps, largest), each model's stepping time and real-time factor, Newton
-// iterations per step, the error indicator at its largest (checked every model.check_every
-// steps, as a scene does), and whether the full model's material lost strong ellipticity; in all,
-// also the reduced model's tangent formations (and their time) and step cuts.
+// given), both through SceneRun from the settled state, each timed on its own. Per run and in all:
+// the nodal error of the reduced model against the full one (RMS over nodes and steps, largest),
+// each model's stepping time and real-time factor, Newton iterations per step, the error indicator
+// at its largest (checked every model.check_every steps, as a scene does), and whether the full
+// model's material lost strong ellipticity; in all, also the reduced model's tangent formations
+// (and their time) and step cuts.
 //
 // Usage: reduced_benchmark SCENE BASIS... [--csv FILE] [--seed N] [--pairs N] [--mixes N]
 //                          [--duration S]
