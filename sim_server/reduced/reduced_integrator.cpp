@@ -199,8 +199,11 @@ bool ReducedIntegrator::form_tangent(const fem::Vector& q, double dt) {
   fem::SymmetricMatrix K(system_.solid().pattern());
   fem::Vector f;
   if (!reduced_force(displacement_of(q), f, &K, nullptr)) return false;
-  newton_matrix_ =
-      projector_.project(K) + mass_r_ / (p.beta * dt * dt) + damping_r_ * (p.gamma / (p.beta * dt));
+  // The tangent steers the corrections only: in the scene's solve precision.
+  const Precision precision = settings_.newton.single_precision_solve ? Precision::single_precision
+                                                                      : Precision::double_precision;
+  newton_matrix_ = projector_.project(K, precision) + mass_r_ / (p.beta * dt * dt) +
+                   damping_r_ * (p.gamma / (p.beta * dt));
   tangent_.compute(newton_matrix_);
   if (tangent_.info() != Eigen::Success || !tangent_.isPositive()) return false;
   tangent_dt_ = dt;
