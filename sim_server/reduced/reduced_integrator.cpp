@@ -71,6 +71,8 @@ ReducedIntegrator::ReducedIntegrator(const fem::MechanicalSystem& system, Reduce
                                      fem::DynamicSettings settings)
     : system_(system),
       settings_(settings),
+      precision_(settings.newton.single_precision_solve ? Precision::single_precision
+                                                        : Precision::double_precision),
       phi_(std::move(basis.modes)),
       origin_(std::move(basis.origin)),
       num_sampled_(static_cast<int>(basis.sample_elements.size())),
@@ -93,7 +95,7 @@ ReducedIntegrator::ReducedIntegrator(const fem::MechanicalSystem& system, Reduce
   }
   phi_free_.resize(dofs.num_free(), phi_.cols());
   for (Eigen::Index j = 0; j < phi_.cols(); ++j) phi_free_.col(j) = dofs.gather_free(phi_.col(j));
-  if (settings_.newton.single_precision_solve) phi_free_single_ = phi_free_.cast<float>();
+  if (precision_ == Precision::single_precision) phi_free_single_ = phi_free_.cast<float>();
   projector_ = GalerkinProjector(*solid.pattern(), dofs, phi_);
   weights_.assign(static_cast<std::size_t>(solid.mesh().num_elements()), 0.0);
   for (std::size_t j = 0; j < basis.sample_elements.size(); ++j)
@@ -129,7 +131,7 @@ void ReducedIntegrator::reconstruct() {
 }
 
 void ReducedIntegrator::project_free(const fem::Vector& r_free, fem::Vector& f) const {
-  if (phi_free_single_.size() > 0)
+  if (precision_ == Precision::single_precision)
     multiply(phi_free_single_, true, r_free, 1.0, f);
   else
     multiply(phi_free_, true, r_free, 1.0, f);
@@ -137,7 +139,7 @@ void ReducedIntegrator::project_free(const fem::Vector& r_free, fem::Vector& f) 
 
 fem::Vector ReducedIntegrator::expand_free(const fem::Vector& dq) const {
   fem::Vector change(phi_free_.rows());
-  if (phi_free_single_.size() > 0)
+  if (precision_ == Precision::single_precision)
     multiply(phi_free_single_, false, dq, 0.0, change);
   else
     multiply(phi_free_, false, dq, 0.0, change);
@@ -199,10 +201,8 @@ bool ReducedIntegrator::form_tangent(const fem::Vector& q, double dt) {
   fem::SymmetricMatrix K(system_.solid().pattern());
   fem::Vector f;
   if (!reduced_force(displacement_of(q), f, &K, nullptr)) return false;
-  // The tangent steers the corrections only: in the scene's solve precision.
-  const Precision precision = settings_.newton.single_precision_solve ? Precision::single_precision
-                                                                      : Precision::double_precision;
-  newton_matrix_ = projector_.project(K, precision) + mass_r_ / (p.beta * dt * dt) +
+  // The tangent steers the corrections only: in the products' precision.
+  newton_matrix_ = projector_.project(K, precision_) + mass_r_ / (p.beta * dt * dt) +
                    damping_r_ * (p.gamma / (p.beta * dt));
   tangent_.compute(newton_matrix_);
   if (tangent_.info() != Eigen::Success || !tangent_.isPositive()) return false;

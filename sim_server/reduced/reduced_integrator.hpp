@@ -84,12 +84,15 @@ class ReducedIntegrator : public fem::TimeIntegrator {
 
   const fem::MechanicalSystem& system_;
   fem::DynamicSettings settings_;
+  // Of the basis' products and the Newton matrix's projection: the scene's solve precision
+  // (newton.single_precision_solve).
+  Precision precision_;
   Eigen::MatrixXd phi_;  // all dofs x k
   fem::Vector origin_;   // the basis' origin, full vector [m]
   int num_sampled_ = 0;
   Eigen::MatrixXd phi_free_;  // free dofs x k
-  // phi_free_ in single precision, for the products of every iteration when the scene's solver
-  // solves in single precision (newton.single_precision_solve); empty otherwise.
+  // phi_free_ in single precision, for the products of every iteration in single precision;
+  // empty otherwise.
   Eigen::MatrixXf phi_free_single_;
   GalerkinProjector projector_;    // Phi^T A Phi
   std::vector<double> weights_;    // per element: the sample's weight, 0 elsewhere
