@@ -7,6 +7,9 @@ sweep wall time, their ratio; the cluster's start-up, paid once per sweep comman
 what the machine allows, the same runs also go to a plain multiprocessing pool of as many
 processes (no dask, no rows written): the floor a sweep could reach here; and a plain CPU loop
 done twice at once against once, in the same pool: what two busy processes get of this machine.
+Where a sweep's time goes: the runs' own wall times summed (each row's wall_s) one after the
+other, in the sweep and in the pool, and the CPU time this process (the scheduler, the client
+and the rows) used during the sweep.
 
 Usage: PYTHONPATH=build/python:python /usr/bin/python3 benchmarks/sweep_benchmark.py
            [--runs 40] [--duration 0.2] [--workers 2] [--repeats 3]
@@ -20,6 +23,7 @@ os.environ.update(OMP_NUM_THREADS="1", OPENBLAS_NUM_THREADS="1")
 
 import argparse  # noqa: E402
 import multiprocessing  # noqa: E402
+import resource  # noqa: E402
 import statistics  # noqa: E402
 import sys  # noqa: E402
 import tempfile  # noqa: E402
@@ -42,14 +46,27 @@ def the_runs(count, duration):
     return make_runs(params[:count])
 
 
+def cpu_seconds():
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
+def runs_seconds(rows):
+    """The runs' own wall times summed [s]."""
+    return sum(r["wall_s"] for r in rows)
+
+
 def timed_sweep(client, runs, folder):
+    """Wall time [s], the runs' own time [s] and this process's CPU time [s] of one sweep."""
+    cpu = cpu_seconds()
     start = time.perf_counter()
     rows = Sweep(folder, client).run(runs)
     wall = time.perf_counter() - start
+    cpu = cpu_seconds() - cpu
     failed = [r for r in rows if r["status"] != "ok"]
     if failed:
         raise RuntimeError(f"{len(failed)} runs failed, first: {failed[0]['error']}")
-    return wall
+    return wall, runs_seconds(rows), cpu
 
 
 def warm_up(_):
@@ -74,12 +91,13 @@ def machine_pair_factor(pool, n=10_000_000):
 
 
 def timed_pool(pool, runs):
+    """Wall time [s] and the runs' own time [s] of the runs in the pool."""
     start = time.perf_counter()
     rows = pool.map(execute, [r.params for r in runs], chunksize=1)
     wall = time.perf_counter() - start
     if any(r["status"] != "ok" for r in rows):
         raise RuntimeError("a run failed in the pool")
-    return wall
+    return wall, runs_seconds(rows)
 
 
 def main():
@@ -96,20 +114,30 @@ def main():
         client.wait_for_workers(args.workers)
         startup = time.perf_counter() - start
         sequential, parallel, floor, pair = [], [], [], []
+        runs_alone, runs_swept, runs_pooled, sweep_cpu = [], [], [], []
         with tempfile.TemporaryDirectory() as tmp, \
                 multiprocessing.get_context("spawn").Pool(args.workers) as pool:
             pool.map(warm_up, range(args.workers))
             for k in range(args.repeats):
                 # Interleaved, so that all see the same load from others on the machine.
-                sequential.append(timed_sweep(None, runs, os.path.join(tmp, f"seq{k}")))
-                parallel.append(timed_sweep(client, runs, os.path.join(tmp, f"par{k}")))
-                floor.append(timed_pool(pool, runs))
+                wall, own, _ = timed_sweep(None, runs, os.path.join(tmp, f"seq{k}"))
+                sequential.append(wall)
+                runs_alone.append(own)
+                wall, own, cpu = timed_sweep(client, runs, os.path.join(tmp, f"par{k}"))
+                parallel.append(wall)
+                runs_swept.append(own)
+                sweep_cpu.append(cpu)
+                wall, own = timed_pool(pool, runs)
+                floor.append(wall)
+                runs_pooled.append(own)
                 pair.append(machine_pair_factor(pool))
                 print(f"repeat {k + 1}: sequential {sequential[-1]:.2f} s, "
                       f"sweep on {args.workers} workers {parallel[-1]:.2f} s "
                       f"({parallel[-1] / sequential[-1]:.2f}x), plain pool {floor[-1]:.2f} s "
-                      f"({floor[-1] / sequential[-1]:.2f}x), two CPU loops at once {pair[-1]:.2f}x",
-                      flush=True)
+                      f"({floor[-1] / sequential[-1]:.2f}x), two CPU loops at once {pair[-1]:.2f}x; "
+                      f"the runs' own time {runs_alone[-1]:.2f} s one after the other, "
+                      f"{runs_swept[-1]:.2f} s in the sweep, {runs_pooled[-1]:.2f} s in the pool; "
+                      f"this process's CPU in the sweep {sweep_cpu[-1]:.2f} s", flush=True)
     seq, par = statistics.median(sequential), statistics.median(parallel)
     low = statistics.median(floor)
     # Each repeat's own ratio compares two runs made one after the other, under the same load
@@ -123,6 +151,11 @@ def main():
           f"(plain pool {low:.2f} s, {low / seq:.2f}x; two CPU loops at once "
           f"{statistics.median(pair):.2f}x one after the other); cluster start-up "
           f"{startup:.2f} s (once per command)")
+    swept = statistics.median(w / a for w, a in zip(runs_swept, runs_alone))
+    pooled = statistics.median(p / a for p, a in zip(runs_pooled, runs_alone))
+    print(f"where the sweep's time goes, medians: the runs' own time in the sweep {swept:.2f}x "
+          f"theirs one after the other (in the pool {pooled:.2f}x); this process's CPU "
+          f"{statistics.median(sweep_cpu):.2f} s a sweep (the scheduler, the client, the rows)")
 
 
 if __name__ == "__main__":
