@@ -227,12 +227,13 @@ SurfacePoint Obstacle::closest(const Vec3& x, int hint_triangle, const Vec3& hin
   }
   const bool edge = on.feature == TrianglePoint::Feature::edge;
   const bool rim = edge ? rim_edge_[t][on.index] : static_cast<bool>(rim_vertex_[tri[on.index]]);
-  if (rim && !closed_) return s;  // beyond the rim of a sheet: neither in front nor behind it
-  s.valid = true;
   const Vec3& pseudo = edge ? edge_normal_[t][on.index] : vertex_normal_[tri[on.index]];
   const double d = offset.norm();
   const double sign = offset.dot(pseudo) < 0.0 ? -1.0 : 1.0;
-  s.distance = s.gap = sign * d;
+  s.distance = sign * d;
+  if (rim && !closed_) return s;  // beyond the rim of a sheet: neither in front nor behind it
+  s.valid = true;
+  s.gap = s.distance;
   // On the surface itself the direction of x - point is undefined; the pseudo-normal stands in.
   s.normal = d > on_surface_ ? (sign / d) * offset : pseudo;
   s.curvature = Mat3::Identity() - s.normal * s.normal.transpose();

@@ -35,7 +35,9 @@ enum class Normals { faceted, smooth };
 // What the closest point of the surface to x says about x.
 struct SurfacePoint {
   bool valid = false;          // false: the closest point lies on the rim of an open surface
-  double distance = 0.0;       // signed distance phi [m]: negative inside (behind the surface)
+  // Signed distance phi [m]: negative inside (behind the surface). Not valid: the distance to the
+  // rim, negative on the back side of the rim's pseudo-normal.
+  double distance = 0.0;
   Vec3 point = Vec3::Zero();   // closest point on the surface [m]
   Vec3 normal = Vec3::Zero();  // n, unit: grad phi (faceted), the interpolated normal (smooth)
   // g = (x - point) . n [m], the gap a contact force acts on: phi faceted; smooth, within a

@@ -76,8 +76,11 @@ void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
       const SurfacePoint s = obstacle.closest(x, probe.triangle, probe.point);
       probe.triangle = s.triangle;
       probe.point = s.point;
-      if (!s.valid) {  // beyond an open sheet's rim: in reach once within the depth of it
-        probe.reach = (x - s.point).norm() - depth;
+      if (!s.valid) {
+        // Beyond an open sheet's rim. On the rim's front side, out of reach until it comes as
+        // near as a node in front of the sheet (with the same escape, Probe); on its back side
+        // once within the depth of it.
+        probe.reach = s.distance >= 0.0 ? s.distance - shift : -s.distance - depth;
       } else if (s.distance >= shift) {  // in front
         probe.reach = s.distance - shift;
         probe.in_front = true;

@@ -145,9 +145,11 @@ class RigidContact : public ForceContribution {
   // What the last closest-point query of each (node, obstacle) pair proved: no contact while the
   // node stays within `reach` of where it was (|phi| changes no faster than the node moves).
   // Most nodes are millimetres from every obstacle and move micrometres an iteration, so most
-  // queries are skipped. One case escapes the proof: a node in front of an open sheet that
-  // slips around its rim to its back in less than its distance from it counts as in front until
-  // it is queried again (a contact from behind a sheet is spurious anyway).
+  // queries are skipped. One case escapes the proof: a node in front of an open sheet, or beyond
+  // its rim on the front side, that slips around the rim to the sheet's back in less than its
+  // distance from it counts as out of contact until it is queried again (a contact from behind a
+  // sheet is spurious anyway). Beyond the rim on the back side a node is in reach once within
+  // the search depth of the rim.
   struct Probe {
     Vec3 at = Vec3::Zero();
     double reach = -1.0;    // < 0: query again

@@ -31,8 +31,14 @@ TEST(Obstacle, TiltedPlaneGivesTheExactSignedDistance) {
     EXPECT_LT((s.point - foot).norm(), 1e-15);
     EXPECT_LT((s.normal - n).norm(), 1e-14);
   }
-  // Beyond the rim of an open sheet a point is neither in front of it nor behind it.
-  EXPECT_FALSE(plane.closest(c + 0.06 * e1 - 0.001 * n).valid);
+  // Beyond the rim of an open sheet a point is neither in front of it nor behind it; its
+  // distance is to the rim, signed by the side of the sheet's plane it is on.
+  const SurfacePoint behind = plane.closest(c + 0.06 * e1 - 0.001 * n);
+  EXPECT_FALSE(behind.valid);
+  EXPECT_NEAR(behind.distance, -std::hypot(0.01, 0.001), 1e-15);
+  const SurfacePoint in_front = plane.closest(c + 0.06 * e1 + 0.002 * n);
+  EXPECT_FALSE(in_front.valid);
+  EXPECT_NEAR(in_front.distance, std::hypot(0.01, 0.002), 1e-15);
 }
 
 TEST(Obstacle, SphereDistanceIsWithinTheFacetError) {

@@ -149,6 +149,42 @@ TEST(RigidContact, AskedAgainAtTheSamePositionsGivesTheSameContacts) {
   EXPECT_EQ(force(reused, u), force(fresh, u));
 }
 
+// A node that skips its query (it cannot have come within reach of the obstacle since its last
+// one) finds what a query would: a block slid past the rim of an open sheet, once on the sheet's
+// front side (over it, then pressed into it) and once on its back side (under it, coming round
+// the rim into its back within the search depth), gets at every position the forces of a contact
+// that never saw another position.
+TEST(RigidContact, SkippedQueriesFindWhatAQueryWould) {
+  const Mesh mesh = make_box(Vec3::Zero(), Vec3(0.01, 0.01, 0.01), 2, 2, 2);
+  const auto solid = make_solid(mesh);
+  // The sheet z = -1 mm for x < -3 mm: the block starts 3 mm beyond its rim.
+  const auto sheet = [] {
+    return std::vector{obstacle("sheet", test::square(Vec3(-0.053, 0.005, -0.001), Vec3::UnitZ(),
+                                                      0.05, 4))};
+  };
+  for (const double side : {1.0, -1.0}) {  // in front of the sheet's plane, behind it
+    const RigidContact reused(sheet(), mesh, solid->dofs());
+    // From 1 mm above the plane (the block's bottom), or from the block's top 1 mm below it.
+    const Vec3 start(0.0, 0.0, side > 0.0 ? 0.0 : -0.012);
+    std::vector<Vec3> path;
+    for (int k = 0; k <= 40; ++k) path.push_back(start + Vec3(-0.00025 * k, 0.0, 0.0));
+    for (int k = 1; k <= 30; ++k) path.push_back(path[40] + Vec3(0.0, 0.0, -side * 0.00005 * k));
+    double largest = 0.0;
+    for (const Vec3& shift : path) {
+      Vector u(solid->num_dofs());
+      for (int n = 0; n < mesh.num_nodes(); ++n) u.segment<3>(3 * n) = shift;
+      Vector f = Vector::Zero(u.size()), expected = f;
+      reused.add(u, 1.0, f, nullptr);
+      RigidContact(sheet(), mesh, solid->dofs()).add(u, 1.0, expected, nullptr);
+      // The same closest points, found from other hints: round-off of the 0.05 m geometry
+      // (~1e-17 m) times the penalties (~1e4 N/m).
+      EXPECT_LT((f - expected).norm(), 1e-11) << "side " << side << ", shift " << shift.transpose();
+      largest = std::max(largest, expected.norm());
+    }
+    EXPECT_GT(largest, 1.0) << "side " << side;  // N: the path ends in contact
+  }
+}
+
 // The penetration under a contact pressure P: psi'(p) = eps p^2 / (2 w) up to p = w, then
 // eps (p - w / 2), per unit area (rigid_contact.hpp).
 double penetration(double P, const ContactSettings& s) {
