@@ -34,7 +34,7 @@ enum class Normals { faceted, smooth };
 
 // What the closest point of the surface to x says about x.
 struct SurfacePoint {
-  bool valid = false;          // false: the closest point lies on the rim of an open surface
+  bool valid = false;  // false: the closest point lies on the rim of an open surface
   // Signed distance phi [m]: negative inside (behind the surface). Not valid: the distance to the
   // rim, negative on the back side of the rim's pseudo-normal.
   double distance = 0.0;

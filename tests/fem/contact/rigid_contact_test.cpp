@@ -159,8 +159,8 @@ TEST(RigidContact, SkippedQueriesFindWhatAQueryWould) {
   const auto solid = make_solid(mesh);
   // The sheet z = -1 mm for x < -3 mm: the block starts 3 mm beyond its rim.
   const auto sheet = [] {
-    return std::vector{obstacle("sheet", test::square(Vec3(-0.053, 0.005, -0.001), Vec3::UnitZ(),
-                                                      0.05, 4))};
+    return std::vector{
+        obstacle("sheet", test::square(Vec3(-0.053, 0.005, -0.001), Vec3::UnitZ(), 0.05, 4))};
   };
   for (const double side : {1.0, -1.0}) {  // in front of the sheet's plane, behind it
     const RigidContact reused(sheet(), mesh, solid->dofs());
