@@ -170,15 +170,15 @@ TEST(RigidContact, SkippedQueriesFindWhatAQueryWould) {
     for (int k = 0; k <= 40; ++k) path.push_back(start + Vec3(-0.00025 * k, 0.0, 0.0));
     for (int k = 1; k <= 30; ++k) path.push_back(path[40] + Vec3(0.0, 0.0, -side * 0.00005 * k));
     double largest = 0.0;
-    for (const Vec3& shift : path) {
+    for (const Vec3& move : path) {
       Vector u(solid->num_dofs());
-      for (int n = 0; n < mesh.num_nodes(); ++n) u.segment<3>(3 * n) = shift;
+      for (int n = 0; n < mesh.num_nodes(); ++n) u.segment<3>(3 * n) = move;
       Vector f = Vector::Zero(u.size()), expected = f;
       reused.add(u, 1.0, f, nullptr);
       RigidContact(sheet(), mesh, solid->dofs()).add(u, 1.0, expected, nullptr);
       // The same closest points, found from other hints: round-off of the 0.05 m geometry
       // (~1e-17 m) times the penalties (~1e4 N/m).
-      EXPECT_LT((f - expected).norm(), 1e-11) << "side " << side << ", shift " << shift.transpose();
+      EXPECT_LT((f - expected).norm(), 1e-11) << "side " << side << ", at " << move.transpose();
       largest = std::max(largest, expected.norm());
     }
     EXPECT_GT(largest, 1.0) << "side " << side;  // N: the path ends in contact
