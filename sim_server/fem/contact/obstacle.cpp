@@ -7,6 +7,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <limits>
 #include <map>
 #include <stdexcept>
 #include <utility>
@@ -207,7 +209,40 @@ SurfacePoint Obstacle::closest(const Vec3& x, int hint_triangle, const Vec3& hin
           ? index_->tree.closest_point_and_primitive(to_point(x))
           : index_->tree.closest_point_and_primitive(
                 to_point(x), {to_point(hint_point), index_->triangles.cbegin() + hint_triangle});
-  const int t = static_cast<int>(hit.second - index_->triangles.cbegin());
+  return closest_on(x, static_cast<int>(hit.second - index_->triangles.cbegin()));
+}
+
+std::vector<int> Obstacle::triangles_near(const Vec3& center, double half_width) const {
+  const Vec3 low = center.array() - half_width, high = center.array() + half_width;
+  std::vector<Index::Primitive::Id> hits;
+  index_->tree.all_intersected_primitives(
+      CGAL::Bbox_3(low.x(), low.y(), low.z(), high.x(), high.y(), high.z()),
+      std::back_inserter(hits));
+  std::vector<int> triangles;
+  triangles.reserve(hits.size());
+  for (const auto& id : hits)
+    triangles.push_back(static_cast<int>(id - index_->triangles.cbegin()));
+  return triangles;
+}
+
+Obstacle::Nearest Obstacle::nearest_among(const Vec3& x, const std::vector<int>& triangles) const {
+  const auto& V = surface_.vertices;
+  Nearest n{-1, std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+  for (int t : triangles) {
+    const auto& tri = surface_.triangles[t];
+    const double d = (x - closest_on_triangle(x, V[tri[0]], V[tri[1]], V[tri[2]]).point).norm();
+    if (d < n.distance) {
+      n.next = n.distance;
+      n.distance = d;
+      n.triangle = t;
+    } else {
+      n.next = std::min(n.next, d);
+    }
+  }
+  return n;
+}
+
+SurfacePoint Obstacle::closest_on(const Vec3& x, int t) const {
   const auto& tri = surface_.triangles[t];
   const auto& V = surface_.vertices;
   const TrianglePoint on = closest_on_triangle(x, V[tri[0]], V[tri[1]], V[tri[2]]);

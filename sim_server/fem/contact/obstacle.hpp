@@ -77,6 +77,20 @@ class Obstacle {
   SurfacePoint closest(const Vec3& x, int hint_triangle = -1,
                        const Vec3& hint_point = Vec3::Zero()) const;
 
+  // What the closest point of x on triangle t says about x: closest(x) when t is the triangle
+  // nearest to x.
+  SurfacePoint closest_on(const Vec3& x, int t) const;
+  // The triangles that meet the cube of half-width `half_width` round `center`, from the tree.
+  // Every other triangle is at least half_width from center.
+  std::vector<int> triangles_near(const Vec3& center, double half_width) const;
+  // The nearest of `triangles` to x, its distance and the next nearest one's [m] (infinity when
+  // there is none).
+  struct Nearest {
+    int triangle = -1;
+    double distance = 0.0, next = 0.0;
+  };
+  Nearest nearest_among(const Vec3& x, const std::vector<int>& triangles) const;
+
  private:
   struct Index;  // the CGAL tree, kept out of this header
   // The smooth normal at s.point of triangle t, and the gap of x along it, into s.

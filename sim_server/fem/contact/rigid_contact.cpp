@@ -73,7 +73,7 @@ void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
       const double box = obstacle.box_distance(x);
       probe.reach = obstacle.closed() ? box - shift : box - std::max(depth, shift);
       if (probe.reach > 0.0) continue;
-      const SurfacePoint s = obstacle.closest(x, probe.triangle, probe.point);
+      const SurfacePoint s = closest(obstacle, probe, x);
       probe.triangle = s.triangle;
       probe.point = s.point;
       if (!s.valid) {
@@ -93,9 +93,49 @@ void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
           found_.push_back({i, o, s});
         }
       }
+      if (probe.reach < 0.0 && probe.near.empty()) list_near(obstacle, probe, x, s);
     }
   }
   found_at_.swap(at);
+}
+
+SurfacePoint RigidContact::closest(const Obstacle& obstacle, Probe& probe, const Vec3& x) const {
+  if ((x - probe.kept_at).norm() < probe.keep) return obstacle.closest_on(x, probe.triangle);
+  const double moved = (x - probe.near_at).norm();
+  if (probe.near.empty() || moved > kNearSlack) {
+    probe.near.clear();
+    probe.keep = -1.0;
+  } else if (keep_nearest(obstacle, probe, x, probe.near_half_width - moved)) {
+    return obstacle.closest_on(x, probe.triangle);
+  }
+  return obstacle.closest(x, probe.triangle, probe.point);
+}
+
+bool RigidContact::keep_nearest(const Obstacle& obstacle, Probe& probe, const Vec3& x,
+                                double unlisted) const {
+  const Obstacle::Nearest n = obstacle.nearest_among(x, probe.near);
+  const double next = std::min(n.next, unlisted);
+  // Two triangles about as near (x on the surface's medial axis, e.g. deep behind a fold or
+  // in the symmetry plane of one) each hold a closest point, which round-off chooses between:
+  // the tree's choice, as a query without the list would make it.
+  if (!(next - n.distance > kTie)) {
+    probe.keep = -1.0;
+    return false;
+  }
+  probe.triangle = n.triangle;
+  probe.kept_at = x;
+  probe.keep = 0.5 * (next - n.distance);
+  return true;
+}
+
+void RigidContact::list_near(const Obstacle& obstacle, Probe& probe, const Vec3& x,
+                             const SurfacePoint& s) const {
+  // The closest point q at any x' within the slack of x has |q - x'| <= |x' - s.point|, so
+  // |q - x| <= |x - s.point| + 2 slack: its triangle is on the list.
+  probe.near_half_width = (x - s.point).norm() + 2.0 * kNearSlack;
+  probe.near = obstacle.triangles_near(x, probe.near_half_width);
+  probe.near_at = x;
+  keep_nearest(obstacle, probe, x, probe.near_half_width);
 }
 
 RigidContact::Penalty RigidContact::penalty(int i, double p) const {

@@ -125,6 +125,11 @@ class RigidContact : public ForceContribution {
   }
   // The depth the multipliers hold a node at, over the tolerance.
   static constexpr double kTargetDepth = 0.5;
+  // How far a node may move from where its near triangles were listed (Probe) [m].
+  static constexpr double kNearSlack = 0.5e-3;
+  // Distances to two triangles closer than this count as a tie [m]: far above their round-off
+  // (~1e-17 m on a tongue-sized surface), far below any gap that matters.
+  static constexpr double kTie = 1e-12;
   // Calls visit(candidate index, obstacle index, surface point) for every contact at u: every
   // pair whose signed distance is below its shift (and above -search_depth).
   template <typename Visit>
@@ -158,8 +163,26 @@ class RigidContact : public ForceContribution {
     Vec3 normal = Vec3::Zero();
     int triangle = -1;  // the closest point at `at`, the next query's hint
     Vec3 point = Vec3::Zero();
+    // A node asked again at every iterate (in contact, or behind a rim within the search depth)
+    // is asked without the tree: its triangles within near_half_width of near_at (every other
+    // one is farther) serve while it stays within kNearSlack of near_at, and the nearest of them
+    // alone while it stays within `keep` of kept_at (distances to triangles change no faster
+    // than the node moves, so the nearest stays so while it moves less than half the margin
+    // to the next). Empty: none listed.
+    std::vector<int> near;
+    Vec3 near_at = Vec3::Zero(), kept_at = Vec3::Zero();
+    double near_half_width = 0.0, keep = -1.0;
   };
   mutable std::vector<Probe> probes_;  // [candidate * obstacles + obstacle]
+  // The closest point of `obstacle` to x, from the probe's near triangles when they hold it.
+  SurfacePoint closest(const Obstacle& obstacle, Probe& probe, const Vec3& x) const;
+  // The nearest of the probe's listed triangles to x into probe.triangle, and how far x may move
+  // while it stays the nearest into keep; false (and no keep) when another is about as near.
+  // `unlisted`: how near to x a triangle off the list can be [m].
+  bool keep_nearest(const Obstacle& obstacle, Probe& probe, const Vec3& x, double unlisted) const;
+  // Lists the triangles near x for a probe that will be asked again, s its closest point.
+  void list_near(const Obstacle& obstacle, Probe& probe, const Vec3& x,
+                 const SurfacePoint& s) const;
   // The contacts found at the last u, by candidate position: a Newton iteration asks for the
   // force and for the springs at the same u, and the line search's last trial is the next
   // iterate.

@@ -202,6 +202,42 @@ TEST(Obstacle, HintDoesNotChangeTheClosestPoint) {
   }
 }
 
+// The triangles listed within |c - closest point| + 2 r of c hold the closest point of every x
+// within r of c, and the nearest of them with its margin to the next is what a search of every
+// triangle gives.
+TEST(Obstacle, NearTrianglesHoldTheClosestPoint) {
+  const Obstacle sphere("sphere", test::icosphere(Vec3(0.001, 0.0, -0.002), 0.02, 2));
+  const auto& surface = sphere.surface();
+  std::vector<int> all(surface.triangles.size());
+  for (std::size_t t = 0; t < all.size(); ++t) all[t] = static_cast<int>(t);
+  std::mt19937 rng(17);
+  std::normal_distribution<double> gauss;
+  std::uniform_real_distribution<double> within(-1.0, 1.0);
+  const double r = 0.002;  // m, a fifth of a facet's size: the nearest triangle changes within it
+  std::size_t largest = 0;
+  for (int k = 0; k < 100; ++k) {
+    const Vec3 c = 0.021 * Vec3(gauss(rng), gauss(rng), gauss(rng)).normalized();
+    const std::vector<int> near =
+        sphere.triangles_near(c, (c - sphere.closest(c).point).norm() + 2.0 * r);
+    largest = std::max(largest, near.size());
+    for (int j = 0; j < 20; ++j) {
+      Vec3 d(within(rng), within(rng), within(rng));
+      const Vec3 x = c + r * d / std::max(1.0, d.norm());
+      const SurfacePoint tree = sphere.closest(x);
+      const Obstacle::Nearest listed = sphere.nearest_among(x, near);
+      const Obstacle::Nearest every = sphere.nearest_among(x, all);
+      // The same nearest distance: the closest point of each triangle is computed alike;
+      // ties between triangles sharing an edge may pick either, with the same point.
+      EXPECT_EQ(listed.distance, every.distance);
+      EXPECT_LT((sphere.closest_on(x, listed.triangle).point - tree.point).norm(), 1e-15);
+      EXPECT_NEAR(listed.distance, (x - tree.point).norm(), 1e-15);
+      EXPECT_LE(listed.next, every.next + 1e-15);  // the list may lack the next of all
+      EXPECT_GE(listed.next, listed.distance);
+    }
+  }
+  EXPECT_LT(largest, surface.triangles.size() / 4);  // the lists are local
+}
+
 TEST(Obstacle, RefusesWhatIsNotASurface) {
   const auto message = [](TriangleSurface s) {
     try {

@@ -185,6 +185,72 @@ TEST(RigidContact, SkippedQueriesFindWhatAQueryWould) {
   }
 }
 
+// A node asked again at every iterate (in contact) is answered from the triangles listed near
+// it, and from the nearest of them alone while it cannot have changed: the shaken box, pressed
+// into a faceted ball, then slid to and fro by about 0.1 mm a step, each node jittered, for 400
+// steps, gets at every position the forces of a contact that never saw another position.
+TEST(RigidContact, NearTrianglesFindWhatAQueryWould) {
+  const ShakenBox box;
+  // A ball whose facets are about 2 mm wide (a walk crosses many of them), the box's top face
+  // 0.4-4 mm into it.
+  const auto contact = [&] {
+    return RigidContact({obstacle("ball", test::icosphere(Vec3(0.0, 0.0, 0.036), 0.03, 4))},
+                        box.mesh, box.solid->dofs());
+  };
+  const RigidContact walked = contact();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> jitter(-3e-5, 3e-5);
+  Vector u = box.u;
+  std::size_t fewest = 1000;
+  for (int k = 0; k < 400; ++k) {
+    // Slid to and fro by about 0.1 mm a step (within the lists' slack), some steps standing
+    // still, each node jittered by up to 0.05 mm.
+    const Vec3 slide =
+        k % 7 == 6 ? Vec3::Zero() : Vec3(1e-4 * std::cos(k / 20.0), 1e-4 * std::sin(k / 31.0), 0.0);
+    for (int n = 0; n < box.mesh.num_nodes(); ++n)
+      u.segment<3>(3 * n) += slide + Vec3(jitter(rng), jitter(rng), jitter(rng));
+    Vector f = Vector::Zero(u.size()), expected = f;
+    walked.add(u, 1.0, f, nullptr);
+    const RigidContact fresh = contact();
+    fresh.add(u, 1.0, expected, nullptr);
+    fewest = std::min(fewest, fresh.report(u).contacts.size());
+    // The same triangle's closest point, computed alike: equal but for a tie between triangles
+    // sharing an edge (the same point either way, to round-off ~1e-17 m times ~1e5 N/m).
+    EXPECT_LT((f - expected).norm(), 1e-11) << "step " << k;
+  }
+  EXPECT_GE(fewest, 4u);  // nodes in contact all along
+}
+
+// A node between two sheets of one obstacle, nearer one of them, that moves across to the other
+// in steps shorter than the lists' slack: its nearest triangle changes sheets half-way, and
+// with the other sheet off its first list (3 mm away) only the bound on unlisted triangles
+// says when. The forces at every position are a fresh contact's.
+TEST(RigidContact, NearTrianglesLetGoOfTheNearestWhenAnotherCouldBeNearer) {
+  // Off the sheets' triangle edges, where two triangles tie.
+  const Mesh mesh = make_box(Vec3(0.0013, 0.0021, 0.0), Vec3(0.001, 0.001, 0.0005), 1, 1, 1);
+  const auto solid = make_solid(mesh);
+  // The sheets z = -0.6 mm (normal -z) and z = 3.4 mm (normal +z): the block's nodes are behind
+  // both, within the search depth of each.
+  TriangleSurface slot = test::square(Vec3(0.0, 0.0, -0.0006), -Vec3::UnitZ(), 0.01, 2);
+  const TriangleSurface upper = test::square(Vec3(0.0, 0.0, 0.0034), Vec3::UnitZ(), 0.01, 2);
+  const int offset = static_cast<int>(slot.vertices.size());
+  slot.vertices.insert(slot.vertices.end(), upper.vertices.begin(), upper.vertices.end());
+  for (auto t : upper.triangles)
+    slot.triangles.push_back({t[0] + offset, t[1] + offset, t[2] + offset});
+  const auto contact = [&] { return RigidContact({obstacle("slot", slot)}, mesh, solid->dofs()); };
+  const RigidContact moved = contact();
+  Vector u = Vector::Zero(solid->num_dofs());
+  for (int k = 0; k <= 40; ++k) {
+    // Up to 2.9 mm, never where a node is as far from both sheets (a tie either may win).
+    for (int n = 0; n < mesh.num_nodes(); ++n) u[3 * n + 2] = 0.000073 * k;
+    Vector f = Vector::Zero(u.size()), expected = f;
+    moved.add(u, 1.0, f, nullptr);
+    contact().add(u, 1.0, expected, nullptr);
+    EXPECT_LT((f - expected).norm(), 1e-11) << "step " << k;
+    EXPECT_GT(expected.norm(), 0.0);
+  }
+}
+
 // The penetration under a contact pressure P: psi'(p) = eps p^2 / (2 w) up to p = w, then
 // eps (p - w / 2), per unit area (rigid_contact.hpp).
 double penetration(double P, const ContactSettings& s) {
