@@ -23,14 +23,15 @@ def simulation_for(scene, first_levels):
     sims = getattr(_cache, "sims", None)
     if sims is None:
         sims = _cache.sims = {}
-    if scene in sims:
-        # About 8 ms against 90 ms for a new one (the scene built and settled), and its first
-        # step then forms no factorization (a sixth of a 0.2 s run of the tongue).
-        sims[scene].reset(first_levels(sims[scene].dt))
-    else:
+    if scene not in sims:
         with warnings.catch_warnings():
             warnings.simplefilter("ignore", RuntimeWarning)
-            sims[scene] = tongue.Simulation(scene)  # settled, at t = 0: no reset needed
+            sims[scene] = tongue.Simulation(scene)  # built and settled: about 90 ms
+    # About 8 ms, and the first step then forms no factorization (a sixth of a 0.2 s run of the
+    # tongue). A new Simulation is reset too: its factor was formed with every muscle off, and
+    # its first run would count a factorization that the runs after it do not, making a row
+    # depend on which worker did the run before.
+    sims[scene].reset(first_levels(sims[scene].dt))
     return sims[scene]
 
 

@@ -25,9 +25,12 @@ class RowStore:
     def row_path(self, key):
         return os.path.join(self.rows_dir, f"{key}.json")
 
-    def write(self, row):
-        _write_atomically(self.row_path(row["key"]), json.dumps(row, indent=1))
-        # The rename itself is durable once the folder is synced.
+    def write(self, rows):
+        """Each row's file, then the folder synced once: the renames are durable from then."""
+        for row in rows:
+            # One line: with `indent` the json module encodes in Python instead of C, about
+            # 0.4 ms a row of this process's CPU beside the workers.
+            _write_atomically(self.row_path(row["key"]), json.dumps(row))
         fd = os.open(self.rows_dir, os.O_RDONLY)
         try:
             os.fsync(fd)

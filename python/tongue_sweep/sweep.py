@@ -19,15 +19,16 @@ IGNORE_MODULES = "distributed.diagnostics.computations.ignore-modules"
 
 def runs_per_task(queued, slots, walls):
     """How many runs the next task takes: one until a run's wall time is known, then enough to
-    last about TASK_TARGET_S, but never more than a share of what is left that keeps every worker
-    busy to the end (guided self-scheduling: shares shrink as the queue does). `walls`: the wall
-    times of the runs done so far [s], sorted."""
+    last about TASK_TARGET_S, but never more than an equal share of what is left between the
+    worker threads (guided self-scheduling, Polychronopoulos & Kuck 1987: shares shrink as the
+    queue does, so that every worker stays busy to the end). `walls`: the wall times of the runs
+    done so far [s], sorted."""
     if not walls:
         return 1
     n = len(walls)
     median = walls[n // 2] if n % 2 else 0.5 * (walls[n // 2 - 1] + walls[n // 2])
     wanted = math.ceil(TASK_TARGET_S / max(median, 1e-3))
-    return max(1, min(wanted, math.ceil(queued / (2 * slots))))
+    return max(1, min(wanted, math.ceil(queued / slots)))
 
 
 class Sweep:
@@ -52,14 +53,19 @@ class Sweep:
     def _logs_dir(self, run):
         return os.path.join(self.store.out_dir, "experiments", run.key)
 
-    def _finish(self, run, results, counter):
-        row = {"key": run.key, "kind": run.kind, **run.params, **results}
-        row["key"], row["kind"] = run.key, run.kind  # a parameter may not shadow them
-        self.store.write(row)
-        counter[0] += 1
-        if self.on_row:
-            self.on_row(row, counter[0], counter[1])
-        return row
+    def _finish(self, runs, results, done, counter):
+        """The runs' rows into `done` and onto disk (one folder sync for them all)."""
+        rows = []
+        for run, result in zip(runs, results):
+            row = {"key": run.key, "kind": run.kind, **run.params, **result}
+            row["key"], row["kind"] = run.key, run.kind  # a parameter may not shadow them
+            rows.append(row)
+        self.store.write(rows)
+        for row in rows:
+            done[row["key"]] = row
+            counter[0] += 1
+            if self.on_row:
+                self.on_row(row, counter[0], counter[1])
 
     def run(self, runs):
         """Does the runs not on record as ok (failed ones again) and returns every run's row,
@@ -74,7 +80,7 @@ class Sweep:
                 for run in pending:
                     port = self.ports[0] if self.ports else None
                     results = execute(run.params, port, self._logs_dir(run), self.runner)
-                    done[run.key] = self._finish(run, results, counter)
+                    self._finish([run], [results], done, counter)
             else:
                 import dask
                 # At every submit dask reads the source of the calling function for its
@@ -99,8 +105,9 @@ class Sweep:
         walls = []  # of the runs done so far [s], kept sorted
 
         def submit_what_can_go():
-            # Two tasks per worker thread: one running, one waiting its turn on the worker.
-            while queue and len(in_flight) < 2 * slots:
+            # Two tasks per worker thread, one running and one waiting its turn on the worker;
+            # but one each until a run's wall time is known, the second would be a single run too.
+            while queue and len(in_flight) < (2 * slots if walls else slots):
                 # An experiment needs a free port; while every port is in use, the runs queued
                 # behind it that need none go first.
                 first = next((i for i, r in enumerate(queue)
@@ -131,11 +138,11 @@ class Sweep:
                     failed = {"status": "failed", "error": f"{type(e).__name__}: {e}"}
                     results = [failed] * len(batch)
                 ports.give_back(port)
-                for run, result in zip(batch, results):
+                for result in results:
                     if "wall_s" in result:
                         bisect.insort(walls, result["wall_s"])
-                    done[run.key] = self._finish(run, result, counter)
-                submit_what_can_go()
+                submit_what_can_go()  # before the rows go to disk: no worker waits for that
+                self._finish(batch, results, done, counter)
         finally:
             if in_flight:
                 self.client.cancel(list(in_flight))

@@ -83,13 +83,15 @@ def test_a_sweep_resumes_after_a_crash_and_skips_what_is_done(client, tmp_path):
         raise AssertionError("the sweep did not crash")
     except Crash:
         pass
+    # The three rows reported, and any others of the task that brought the third (a task's
+    # rows go to disk together, before they are reported).
     on_disk = sorted(os.listdir(out / "runs"))
-    assert len(on_disk) == 3
+    assert 3 <= len(on_disk) < len(runs)
     before = {name: (out / "runs" / name).read_text() for name in on_disk}
 
     again = Sweep(out, client)
     rows = again.run(runs)
-    assert again.skipped == 3
+    assert again.skipped == len(on_disk)
     for name, text in before.items():
         assert (out / "runs" / name).read_text() == text  # not run again
     assert repeatable(rows) == repeatable(whole)
