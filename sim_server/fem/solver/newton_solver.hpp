@@ -143,7 +143,7 @@ class NewtonSolver {
   void update_capacitance();
   // Engages the candidate terms that the correction dx would carry past their gap (a node
   // moving into an obstacle) and solves again with them, a few rounds at most.
-  void engage_candidates(const Vector& r, Vector& dx, NewtonReport& report);
+  void engage_candidates(const Vector& r, Vector& dx);
   // Counts and times the residual evaluations of one solve.
   struct Residuals {
     NonlinearProblem& problem;
