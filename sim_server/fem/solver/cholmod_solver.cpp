@@ -146,7 +146,7 @@ SparseColumn CholmodSolver::forward_sparse(const std::array<int, 3>& index,
                                            const Vec3& direction) const {
   SparseColumn column;
   if (single_precision_ && !single_factor_.empty()) {
-    single_factor_.forward_sparse(index.data(), direction.data(), 3, column.rows, column.values);
+    single_factor_.forward_sparse(index.data(), direction.data(), 3, column);
     return column;
   }
   // In double precision the whole forward substitution; the entries it does not reach stay
@@ -155,11 +155,7 @@ SparseColumn CholmodSolver::forward_sparse(const std::array<int, 3>& index,
   for (int c = 0; c < 3; ++c)
     if (index[c] >= 0) b[index[c]] += direction[c];
   const Vector y = forward(b);
-  for (int i = 0; i < y.size(); ++i) {
-    if (y[i] == 0.0) continue;
-    column.rows.push_back(i);
-    column.values.push_back(y[i]);
-  }
+  for (int i = 0; i < y.size(); ++i) column.append(i, y[i]);
   return column;
 }
 

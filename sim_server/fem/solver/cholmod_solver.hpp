@@ -9,6 +9,7 @@
 
 #include "fem/assembly/sparse_matrix.hpp"
 #include "fem/solver/single_precision_factor.hpp"
+#include "fem/solver/sparse_column.hpp"
 
 namespace tongue::fem {
 
@@ -21,12 +22,6 @@ struct FactorizationReport {
   double shift = 0.0;
   int attempts = 0;
   double seconds = 0.0;
-};
-
-// A vector held as its nonzeros: rows ascending, and their values.
-struct SparseColumn {
-  std::vector<int> rows;
-  std::vector<double> values;
 };
 
 class CholmodSolver {

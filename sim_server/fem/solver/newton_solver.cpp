@@ -53,13 +53,6 @@ double along(const Sparse& t, const Vector& y) {
   return sum;
 }
 
-// w . y for a sparse w.
-double dot(const SparseColumn& w, const Vector& y) {
-  double sum = 0.0;
-  for (std::size_t e = 0; e < w.rows.size(); ++e) sum += w.values[e] * y[w.rows[e]];
-  return sum;
-}
-
 bool all_finite(const Vector& v) {
   return v.allFinite();
 }
@@ -108,25 +101,15 @@ void NewtonSolver::add_correction(const RankOneTerm& term, double stiffness) {
 void NewtonSolver::update_capacitance() {
   const int k = static_cast<int>(corrections_.size());
   if (k == 0) return;
-  // The inner products of the columns in use not taken yet, through a dense copy of one of
-  // each pair: a column meets only those in use with it, not every column solved for with
-  // the factor (on scenes/tongue_i.yaml about 60 in use of up to 170).
-  if (scatter_.size() != tangent_.pattern().size) scatter_ = Vector::Zero(tangent_.pattern().size);
-  for (const Correction& ci : corrections_) {
-    const SparseColumn& a = columns_[ci.column].w;
-    bool spread = false;
+  // The inner products of the columns in use not taken yet: a column meets only those in use
+  // with it, not every column solved for with the factor (on scenes/tongue_i.yaml about 60 in
+  // use of up to 170).
+  for (const Correction& ci : corrections_)
     for (const Correction& cj : corrections_) {
       double& product = gram_[ci.column][cj.column];
-      if (cj.column > ci.column || !std::isnan(product)) continue;
-      if (!spread) {
-        for (std::size_t e = 0; e < a.rows.size(); ++e) scatter_[a.rows[e]] = a.values[e];
-        spread = true;
-      }
-      product = dot(columns_[cj.column].w, scatter_);
+      if (cj.column <= ci.column && std::isnan(product))
+        product = dot(columns_[ci.column].w, columns_[cj.column].w);
     }
-    if (spread)
-      for (int row : a.rows) scatter_[row] = 0.0;
-  }
   Eigen::MatrixXd C(k, k);
   for (int i = 0; i < k; ++i)
     for (int j = 0; j < k; ++j) {
@@ -246,12 +229,10 @@ Vector NewtonSolver::direction(const Vector& r) const {
     Vector y = linear_solver_.forward(q);
     Eigen::VectorXd w(corrections_.size());
     for (std::size_t j = 0; j < corrections_.size(); ++j)
-      w[j] = dot(columns_[corrections_[j].column].w, y);
+      w[j] = columns_[corrections_[j].column].w.dot(y);
     const Eigen::VectorXd t = capacitance_.solve(w);
-    for (std::size_t j = 0; j < corrections_.size(); ++j) {
-      const SparseColumn& c = columns_[corrections_[j].column].w;
-      for (std::size_t e = 0; e < c.rows.size(); ++e) y[c.rows[e]] -= t[j] * c.values[e];
-    }
+    for (std::size_t j = 0; j < corrections_.size(); ++j)
+      columns_[corrections_[j].column].w.subtract_from(t[j], y);
     z = linear_solver_.backward(y);
   }
   for (std::size_t i = 0; i < updates_.size(); ++i) {

@@ -115,7 +115,6 @@ class NewtonSolver {
   std::vector<Column> columns_;  // every column of W solved for with this factor
   // gram_[i][j] = w_i . w_j for j <= i, over columns_, NaN until a capacitance system needs it.
   std::vector<std::vector<double>> gram_;
-  Vector scatter_;  // zero between uses: one column spread out
   struct Correction {
     int column;        // in columns_
     double stiffness;  // the change of k along the column's direction [N/m], non-zero

@@ -231,7 +231,7 @@ void SinglePrecisionFactor::backward(const double* y, double* x) const {
 }
 
 void SinglePrecisionFactor::forward_sparse(const int* unknowns, const double* values, int count,
-                                           std::vector<int>& rows, std::vector<double>& out) const {
+                                           SparseColumn& out) const {
   const Layout f = layout();
   visit_.clear();
   for (int i = 0; i < count; ++i) {
@@ -247,15 +247,11 @@ void SinglePrecisionFactor::forward_sparse(const int* unknowns, const double* va
   std::sort(visit_.begin(), visit_.end());
   tongue::fem::forward(f, sparse_y_.data(), work_.data(), visit_.data(),
                        static_cast<int>(visit_.size()));
-  rows.clear();
-  out.clear();
+  out = SparseColumn{};
   for (int k : visit_) {
     visited_[k] = 0;
     for (int j = super_[k]; j < super_[k + 1]; ++j) {
-      if (sparse_y_[j] != 0.0f) {
-        rows.push_back(j);
-        out.push_back(static_cast<double>(sparse_y_[j]));
-      }
+      out.append(j, static_cast<double>(sparse_y_[j]));
       sparse_y_[j] = 0.0f;
     }
   }

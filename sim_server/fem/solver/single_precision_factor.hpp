@@ -17,6 +17,8 @@
 // s[pi[k]] .. s[pi[k+1]-1], the first of them the supernode's own columns.
 #include <vector>
 
+#include "fem/solver/sparse_column.hpp"
+
 struct cholmod_factor_struct;
 
 namespace tongue::fem {
@@ -41,8 +43,8 @@ class SinglePrecisionFactor {
   // are visited, the only ones a sparse right-hand side reaches (Gilbert & Peierls 1988; Davis
   // 2006, *Direct Methods for Sparse Linear Systems*, sec. 3.2): on the tongue a few per cent of
   // L for one node's unknowns.
-  void forward_sparse(const int* unknowns, const double* values, int count, std::vector<int>& rows,
-                      std::vector<double>& out) const;
+  void forward_sparse(const int* unknowns, const double* values, int count,
+                      SparseColumn& out) const;
 
  private:
   // The arrays the substitutions read, as one view (its type is the .cpp's); throws
