@@ -45,6 +45,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "bus/channels.hpp"
+#include "median.hpp"
 #include "run_figures.hpp"
 #include "run_file/run_file_reader.hpp"
 #include "run_member.hpp"
@@ -285,14 +286,7 @@ double bus_floor_ms(const std::string& url, std::size_t message_bytes) {
   return times[times.size() / 2];
 }
 
-// NaN when any value is (a figure the scenario does not have).
-double median(std::vector<double> v) {
-  if (std::any_of(v.begin(), v.end(), [](double x) { return std::isnan(x); }))
-    return std::numeric_limits<double>::quiet_NaN();
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using tongue::benchmarks::median;
 
 // The median of each figure over the runs.
 Figures medians(const std::vector<Figures>& runs) {

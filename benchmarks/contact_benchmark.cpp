@@ -14,17 +14,14 @@
 #include <vector>
 
 #include "dynamic_scene_run.hpp"
+#include "median.hpp"
 #include "scene/scene_reader.hpp"
 
 namespace {
 
 using namespace tongue;
 
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
+using benchmarks::median;
 
 void measure(const std::string& path, int repeats) {
   const scene::Scene with = scene::read_scene(path);
