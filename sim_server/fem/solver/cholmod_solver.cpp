@@ -142,18 +142,19 @@ Vector CholmodSolver::backward(const Vector& y) const {
   return solve_system(solve_system(y, CHOLMOD_Lt), CHOLMOD_Pt);
 }
 
-SparseColumn CholmodSolver::forward_sparse(const std::array<int, 3>& index,
-                                           const Vec3& direction) const {
+SparseColumn CholmodSolver::forward_sparse(const std::vector<int>& unknowns,
+                                           const std::vector<double>& values) const {
   SparseColumn column;
   if (single_precision_ && !single_factor_.empty()) {
-    single_factor_.forward_sparse(index.data(), direction.data(), 3, column);
+    single_factor_.forward_sparse(unknowns.data(), values.data(),
+                                  static_cast<int>(unknowns.size()), column);
     return column;
   }
   // In double precision the whole forward substitution; the entries it does not reach stay
   // exactly 0.
   Vector b = Vector::Zero(pattern_->size);
-  for (int c = 0; c < 3; ++c)
-    if (index[c] >= 0) b[index[c]] += direction[c];
+  for (std::size_t i = 0; i < unknowns.size(); ++i)
+    if (unknowns[i] >= 0) b[unknowns[i]] += values[i];
   const Vector y = forward(b);
   for (int i = 0; i < y.size(); ++i) column.append(i, y[i]);
   return column;

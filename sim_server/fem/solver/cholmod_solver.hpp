@@ -38,10 +38,11 @@ class CholmodSolver {
   // forward(b) = L^{-1} P b and backward(y) = P^T L^{-T} y, so solve(b) = backward(forward(b)).
   Vector forward(const Vector& b) const;
   Vector backward(const Vector& y) const;
-  // forward() of the vector with `direction` on the unknowns `index` (entries < 0 skipped) and
-  // zeros elsewhere, as its nonzeros. In single precision it visits only the part of L that
-  // such a vector reaches (SinglePrecisionFactor::forward_sparse).
-  SparseColumn forward_sparse(const std::array<int, 3>& index, const Vec3& direction) const;
+  // forward() of the vector with `values` on the `unknowns` (entries < 0 skipped) and zeros
+  // elsewhere, as its nonzeros. In single precision it visits only the part of L that such a
+  // vector reaches (SinglePrecisionFactor::forward_sparse).
+  SparseColumn forward_sparse(const std::vector<int>& unknowns,
+                              const std::vector<double>& values) const;
   // Solves in single precision (single_precision_factor.hpp) from the next factorization on:
   // for iterations that judge their result on a double-precision residual.
   void set_single_precision(bool single) {

@@ -92,8 +92,9 @@ void NewtonSolver::add_correction(const RankOneTerm& term, double stiffness) {
   if (known == columns_.end()) {
     // Its inner products with the other columns are taken when a capacitance system needs them.
     gram_.emplace_back(columns_.size() + 1, kUnknown);
-    columns_.push_back(
-        {term.index, term.direction, linear_solver_.forward_sparse(term.index, term.direction)});
+    columns_.push_back({term.index, term.direction,
+                        linear_solver_.forward_sparse({term.index.begin(), term.index.end()},
+                                                      {term.direction.begin(), term.direction.end()})});
   }
   corrections_.push_back({column, stiffness});
 }
@@ -185,25 +186,34 @@ bool NewtonSolver::correct_factor(NonlinearProblem& problem, const Vector& x,
   return true;
 }
 
-void NewtonSolver::engage_candidates(const Vector& r, Vector& dx) {
+void NewtonSolver::engage_candidates(const Vector& r, Vector& dx, Vector forward_r) {
   // An engaged spring acts from its gap on: its force k (gap + v . dx) enters the linear model
-  // of the residual as k gap v beside the tangent's k v v^T.
+  // of the residual as k gap v beside the tangent's k v v^T. While L^-1 P r is known (no BFGS
+  // pairs in the first solve: 23 of the 27 rounds on scenes/tongue_i.yaml), the forward half
+  // of the solve with the springs is that plus L^-1 P of their pulls, one sparse substitution
+  // for all of them, and solving again costs about its backward half.
   Vector r_model = r;
+  std::vector<int> pulled;  // the unknowns of this round's pulls, and their values
+  std::vector<double> pulls;
   for (int round = 0; round < kEngageRounds && !candidates_.empty(); ++round) {
     if (static_cast<int>(corrections_.size()) >= kMaxCorrections) break;
-    bool engaged = false;
+    pulled.clear();
+    pulls.clear();
     for (auto c = candidates_.begin(); c != candidates_.end();) {
       if (c->gap + along(*c, dx) < 0.0 && static_cast<int>(corrections_.size()) < kMaxCorrections) {
-        for (int i = 0; i < 3; ++i)
-          if (c->index[i] >= 0) r_model[c->index[i]] += c->stiffness * c->gap * c->direction[i];
+        for (int i = 0; i < 3; ++i) {
+          if (c->index[i] < 0) continue;
+          r_model[c->index[i]] += c->stiffness * c->gap * c->direction[i];
+          pulled.push_back(c->index[i]);
+          pulls.push_back(c->stiffness * c->gap * c->direction[i]);
+        }
         add_correction(*c, c->stiffness);
         c = candidates_.erase(c);
-        engaged = true;
       } else {
         ++c;
       }
     }
-    if (!engaged) break;
+    if (pulled.empty()) break;
     // The secant pairs were gathered without these springs: H y = s holds them to the softer
     // response they measured along the springs' directions, and the correction, the springs'
     // pull from their gaps against it, came out 8 to 17 mm long after one of 0.4 to 2 mm
@@ -213,11 +223,16 @@ void NewtonSolver::engage_candidates(const Vector& r, Vector& dx) {
     // pair's y by the springs' k v (v . s) instead took more iterations and factorizations.
     updates_.clear();
     update_capacitance();
-    dx = direction(r_model);
+    if (forward_r.size() > 0) {
+      linear_solver_.forward_sparse(pulled, pulls).subtract_from(-1.0, forward_r);
+      dx = -corrected_backward(forward_r);
+    } else {
+      dx = direction(r_model, &forward_r);
+    }
   }
 }
 
-Vector NewtonSolver::direction(const Vector& r) const {
+Vector NewtonSolver::direction(const Vector& r, Vector* forward_r) const {
   // Two-loop recursion: q = prod (I - rho y s^T) r, z = H_0 q, then back through the pairs.
   Vector q = r;
   std::vector<double> alpha(updates_.size());
@@ -226,23 +241,32 @@ Vector NewtonSolver::direction(const Vector& r) const {
     q -= alpha[i] * updates_[i].y;
   }
   Vector z;
-  if (corrections_.empty()) {
+  if (forward_r != nullptr) forward_r->resize(0);
+  if (forward_r != nullptr && updates_.empty()) {
+    *forward_r = linear_solver_.forward(q);
+    z = corrected_backward(*forward_r);
+  } else if (corrections_.empty()) {
     z = linear_solver_.solve(q);
   } else {
-    Vector y = linear_solver_.forward(q);
-    Eigen::VectorXd w(corrections_.size());
-    for (std::size_t j = 0; j < corrections_.size(); ++j)
-      w[j] = columns_[corrections_[j].column].w.dot(y);
-    const Eigen::VectorXd t = capacitance_.solve(w);
-    for (std::size_t j = 0; j < corrections_.size(); ++j)
-      columns_[corrections_[j].column].w.subtract_from(t[j], y);
-    z = linear_solver_.backward(y);
+    z = corrected_backward(linear_solver_.forward(q));
   }
   for (std::size_t i = 0; i < updates_.size(); ++i) {
     const double beta = updates_[i].inverse_curvature * updates_[i].y.dot(z);
     z += (alpha[i] - beta) * updates_[i].s;
   }
   return -z;
+}
+
+Vector NewtonSolver::corrected_backward(Vector y) const {
+  if (!corrections_.empty()) {
+    Eigen::VectorXd w(corrections_.size());
+    for (std::size_t j = 0; j < corrections_.size(); ++j)
+      w[j] = columns_[corrections_[j].column].w.dot(y);
+    const Eigen::VectorXd t = capacitance_.solve(w);
+    for (std::size_t j = 0; j < corrections_.size(); ++j)
+      columns_[corrections_[j].column].w.subtract_from(t[j], y);
+  }
+  return linear_solver_.backward(y);
 }
 
 bool NewtonSolver::refactorize(NonlinearProblem& problem, const Vector& x, Vector& r,
@@ -347,8 +371,9 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, Vector& x, const Vec
     if ((reform || factor_age_ >= s.max_tangent_reuse) && !refactorize(problem, x, r, report))
       return fail(report.failure);
     auto start = Clock::now();
-    Vector dx = direction(r);
-    engage_candidates(r, dx);  // timed with the solve
+    Vector forward_r;
+    Vector dx = direction(r, candidates_.empty() ? nullptr : &forward_r);
+    engage_candidates(r, dx, std::move(forward_r));  // timed with the solve
     report.solve_seconds += seconds_since(start);
     if (!all_finite(dx)) return fail("the linear solve gave a non-finite correction");
     ++factor_age_;

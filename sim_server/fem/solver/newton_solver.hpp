@@ -141,8 +141,9 @@ class NewtonSolver {
   void add_correction(const RankOneTerm& term, double stiffness);
   void update_capacitance();
   // Engages the candidate terms that the correction dx would carry past their gap (a node
-  // moving into an obstacle) and solves again with them, a few rounds at most.
-  void engage_candidates(const Vector& r, Vector& dx);
+  // moving into an obstacle) and solves again with them, a few rounds at most. forward_r:
+  // L^-1 P r when direction() left it (empty otherwise).
+  void engage_candidates(const Vector& r, Vector& dx, Vector forward_r);
   // Counts and times the residual evaluations of one solve.
   struct Residuals {
     NonlinearProblem& problem;
@@ -150,7 +151,11 @@ class NewtonSolver {
     bool operator()(const Vector& at, Vector& out) const;
   };
   // -H r: the factor's solve with its rank-one corrections, corrected by the BFGS updates.
-  Vector direction(const Vector& r) const;
+  // Without BFGS updates the solve's forward half L^-1 P r is left in forward_r when given
+  // (emptied otherwise), for a solve of r plus a few springs' pulls to start from.
+  Vector direction(const Vector& r, Vector* forward_r = nullptr) const;
+  // The rest of the corrected solve from y = L^-1 P b: P^T L^-T (I - W C^-1 W^T) y.
+  Vector corrected_backward(Vector y) const;
   // Forms and factorizes the tangent at x (and the residual r with it); false with
   // report.failure set when either fails.
   bool refactorize(NonlinearProblem& problem, const Vector& x, Vector& r, NewtonReport& report);

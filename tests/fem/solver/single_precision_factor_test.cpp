@@ -147,7 +147,8 @@ TEST(SinglePrecisionFactor, ASparseForwardSubstitutionGivesTheNonzerosOfTheWhole
       Vector u = Vector::Zero(n);
       for (int c = 0; c < 3; ++c) u[index[c]] = direction[c];
       const Vector dense = solver.forward(u);
-      const SparseColumn sparse = solver.forward_sparse(index, direction);
+      const SparseColumn sparse = solver.forward_sparse({index.begin(), index.end()},
+                                                        {direction.begin(), direction.end()});
       // The same nonzeros: every entry the sparse column leaves out is zero in the dense one.
       Vector spread = Vector::Zero(n);
       sparse.subtract_from(-1.0, spread);
