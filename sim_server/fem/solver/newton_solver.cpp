@@ -112,19 +112,17 @@ void NewtonSolver::update_capacitance() {
   // The inner products of the columns in use not taken yet: a column meets only those in use
   // with it, not every column solved for with the factor (on scenes/tongue_i.yaml about 60 in
   // use of up to 170).
-  for (const Correction& ci : corrections_)
-    for (const Correction& cj : corrections_) {
-      double& product = gram_[ci.column][cj.column];
-      if (cj.column <= ci.column && std::isnan(product))
-        product = dot(columns_[ci.column].w, columns_[cj.column].w);
-    }
   Eigen::MatrixXd C(k, k);
-  for (int i = 0; i < k; ++i)
-    for (int j = 0; j < k; ++j) {
-      const int a = corrections_[i].column, b = corrections_[j].column;
-      C(i, j) = a >= b ? gram_[a][b] : gram_[b][a];
+  for (int i = 0; i < k; ++i) {
+    for (int j = 0; j <= i; ++j) {
+      const int a = std::max(corrections_[i].column, corrections_[j].column);
+      const int b = std::min(corrections_[i].column, corrections_[j].column);
+      double& product = gram_[a][b];
+      if (std::isnan(product)) product = dot(columns_[a].w, columns_[b].w);
+      C(i, j) = C(j, i) = product;
     }
-  for (int i = 0; i < k; ++i) C(i, i) += 1.0 / corrections_[i].stiffness;
+    C(i, i) += 1.0 / corrections_[i].stiffness;
+  }
   capacitance_.compute(C);
 }
 
