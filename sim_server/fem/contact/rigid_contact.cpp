@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 namespace tongue::fem {
@@ -57,13 +58,25 @@ void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
   std::vector<Vec3> at(num_candidates);
   const int num_obstacles = static_cast<int>(obstacles_.size());
   probes_.resize(nodes_.size() * obstacles_.size());
+  candidates_.resize(nodes_.size());
   const double depth = settings_.search_depth;
   for (int i = 0; i < num_candidates; ++i) {
     const Vec3 x = rest_[i] + u.segment<3>(3 * nodes_[i]);
     at[i] = x;
+    Candidate& candidate = candidates_[i];
+    if ((x - candidate.at).norm() < candidate.reach) continue;
+    candidate = {x, std::numeric_limits<double>::infinity(), false};
     for (int o = 0; o < num_obstacles; ++o) {
       Probe& probe = probes_[pair(i, o)];
-      if ((x - probe.at).norm() < probe.reach) continue;
+      // What the probe, kept or asked again at x, leaves the candidate.
+      const auto hold = [&] {
+        candidate.reach = std::min(candidate.reach, probe.reach - (x - probe.at).norm());
+        candidate.in_front = candidate.in_front || probe.in_front;
+      };
+      if ((x - probe.at).norm() < probe.reach) {
+        hold();
+        continue;
+      }
       const Obstacle& obstacle = *obstacles_[o];
       const double shift = shift_[pair(i, o)];
       probe.at = x;
@@ -72,7 +85,10 @@ void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
       // from any surface, so out of reach of an open one while farther than the search depth.
       const double box = obstacle.box_distance(x);
       probe.reach = obstacle.closed() ? box - shift : box - std::max(depth, shift);
-      if (probe.reach > 0.0) continue;
+      if (probe.reach > 0.0) {
+        hold();
+        continue;
+      }
       const SurfacePoint s = closest(obstacle, probe, x);
       probe.triangle = s.triangle;
       probe.point = s.point;
@@ -94,6 +110,7 @@ void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
         }
       }
       if (probe.reach < 0.0 && probe.near.empty()) list_near(obstacle, probe, x, s);
+      hold();
     }
   }
   found_at_.swap(at);
@@ -178,6 +195,7 @@ void RigidContact::add_springs(const Vector& u, std::vector<NodeSpring>& springs
   });
   const std::lock_guard lock(probes_mutex_);
   for (int i = 0; i < static_cast<int>(nodes_.size()); ++i) {
+    if (!candidates_[i].in_front) continue;
     const Vec3 x = rest_[i] + u.segment<3>(3 * nodes_[i]);
     for (int o = 0; o < num_obstacles; ++o) {
       const Probe& probe = probes_[pair(i, o)];
@@ -207,6 +225,7 @@ void RigidContact::forget_queries() {
   const std::lock_guard lock(probes_mutex_);
   found_at_.clear();
   for (Probe& probe : probes_) probe.reach = -1.0;
+  for (Candidate& candidate : candidates_) candidate.reach = -1.0;
 }
 
 void RigidContact::begin_step() {
