@@ -146,8 +146,8 @@ SparseColumn CholmodSolver::forward_sparse(const std::vector<int>& unknowns,
                                            const std::vector<double>& values) const {
   SparseColumn column;
   if (single_precision_ && !single_factor_.empty()) {
-    single_factor_.forward_sparse(unknowns.data(), values.data(),
-                                  static_cast<int>(unknowns.size()), column);
+    single_factor_.forward_sparse(unknowns.data(), values.data(), static_cast<int>(unknowns.size()),
+                                  column);
     return column;
   }
   // In double precision the whole forward substitution; the entries it does not reach stay

@@ -99,9 +99,10 @@ void NewtonSolver::add_correction(const RankOneTerm& term, double stiffness) {
   if (known == columns_.end()) {
     // Its inner products with the other columns are taken when a capacitance system needs them.
     gram_.emplace_back(columns_.size() + 1, kUnknown);
-    columns_.push_back({term.index, term.direction,
-                        linear_solver_.forward_sparse({term.index.begin(), term.index.end()},
-                                                      {term.direction.begin(), term.direction.end()})});
+    columns_.push_back(
+        {term.index, term.direction,
+         linear_solver_.forward_sparse({term.index.begin(), term.index.end()},
+                                       {term.direction.begin(), term.direction.end()})});
   }
   corrections_.push_back({column, stiffness});
 }

@@ -147,8 +147,8 @@ TEST(SinglePrecisionFactor, ASparseForwardSubstitutionGivesTheNonzerosOfTheWhole
       Vector u = Vector::Zero(n);
       for (int c = 0; c < 3; ++c) u[index[c]] = direction[c];
       const Vector dense = solver.forward(u);
-      const SparseColumn sparse = solver.forward_sparse({index.begin(), index.end()},
-                                                        {direction.begin(), direction.end()});
+      const SparseColumn sparse =
+          solver.forward_sparse({index.begin(), index.end()}, {direction.begin(), direction.end()});
       // The same nonzeros: every entry the sparse column leaves out is zero in the dense one.
       Vector spread = Vector::Zero(n);
       sparse.subtract_from(-1.0, spread);
@@ -167,6 +167,27 @@ TEST(SinglePrecisionFactor, ASparseForwardSubstitutionGivesTheNonzerosOfTheWhole
         EXPECT_LT(std::abs(product - expected), (single ? cond * kFloatRoundoff : 1e-10) * scale);
       }
     }
+  }
+}
+
+// Several nodes' entries through one sparse substitution (the pulls of the springs that engage
+// together): it visits the union of their paths and gives exactly the nonzeros of the whole
+// substitution of their sum; entries on the same unknown add up.
+TEST(SinglePrecisionFactor, ASparseForwardSubstitutionOfSeveralNodesIsTheWholeOne) {
+  const Problem p = effective_tangent();
+  const int n = static_cast<int>(p.b.size());
+  for (const bool single : {true, false}) {
+    CholmodSolver solver(p.model->pattern());
+    solver.set_single_precision(single);
+    ASSERT_TRUE(solver.factorize(p.A).ok);
+    const std::vector<int> unknowns{0, 2, n / 2, n / 2, -1, n - 1};
+    const std::vector<double> values{0.5, -1.5, 2.0, 0.25, 7.0, -0.75};
+    Vector b = Vector::Zero(n);
+    for (std::size_t i = 0; i < unknowns.size(); ++i)
+      if (unknowns[i] >= 0) b[unknowns[i]] += values[i];
+    Vector spread = Vector::Zero(n);
+    solver.forward_sparse(unknowns, values).subtract_from(-1.0, spread);
+    EXPECT_EQ(spread, solver.forward(b)) << "single " << single;
   }
 }
 
