@@ -119,6 +119,13 @@ class Process:
             pytest.fail(f"{self.name} did not end within {timeout_s} s; stderr:\n"
                         f"{self.stderr()[-2000:]}")
 
+    def pause(self):
+        """SIGSTOP: it holds where it is until resume()."""
+        self.popen.send_signal(signal.SIGSTOP)
+
+    def resume(self):
+        self.popen.send_signal(signal.SIGCONT)
+
     def terminate(self):
         """SIGTERM and wait; its exit status."""
         if self.running():
