@@ -40,6 +40,7 @@ void measure(const std::string& path, int repeats) {
     own_without.push_back(b.integrator_seconds);
   }
   const double m_with = median(wall_with), m_without = median(wall_without);
+  const double own_m_with = median(own_with), own_m_without = median(own_without);
   std::printf(
       "%s: %d steps; stepping with obstacles %.4f s (%d iterations, %d factorizations), "
       "without %.4f s (%d, %d): %.2fx; the repeats' own ratios %.2fx (%.2f-%.2f); medians of %d\n",
@@ -49,7 +50,7 @@ void measure(const std::string& path, int repeats) {
       *std::max_element(paired.begin(), paired.end()), repeats);
   std::printf(
       "  the integrator's steps alone (sim_batch's \"stepping\"): %.4f s against %.4f s: %.2fx\n",
-      median(own_with), median(own_without), median(own_with) / median(own_without));
+      own_m_with, own_m_without, own_m_with / own_m_without);
   std::fflush(stdout);
 }
 

@@ -43,6 +43,7 @@
 
 #include "bus/channels.hpp"
 #include "bus/messages.hpp"
+#include "median.hpp"
 #include "support/sim_server_driver.hpp"
 
 #ifndef SIM_SERVER_PATH
@@ -78,6 +79,7 @@ analysis:
   dt: 0.004
 )";
 
+using tongue::benchmarks::median;
 using tongue::testing::bus_url;
 using tongue::testing::ChildProcess;
 using tongue::testing::kBoxScene;
@@ -100,12 +102,6 @@ std::unique_ptr<ChildProcess> start_server(const std::vector<std::string>& args,
 
 double mean(const std::vector<double>& v) {
   return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
-}
-double median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
 struct LockStepFigures {

@@ -195,7 +195,6 @@ void NewtonSolver::engage_candidates(const Vector& r, Vector& dx, Vector forward
   // pairs in the first solve: 23 of the 27 rounds on scenes/tongue_i.yaml), the forward half
   // of the solve with the springs is that plus L^-1 P of their pulls, one sparse substitution
   // for all of them, and solving again costs about its backward half.
-  Vector r_model = r;
   std::vector<int> pulled;  // the unknowns of this round's pulls, and their values
   std::vector<double> pulls;
   for (int round = 0; round < kEngageRounds && !candidates_.empty(); ++round) {
@@ -206,7 +205,6 @@ void NewtonSolver::engage_candidates(const Vector& r, Vector& dx, Vector forward
       if (c->gap + along(*c, dx) < 0.0 && static_cast<int>(corrections_.size()) < kMaxCorrections) {
         for (int i = 0; i < 3; ++i) {
           if (c->index[i] < 0) continue;
-          r_model[c->index[i]] += c->stiffness * c->gap * c->direction[i];
           pulled.push_back(c->index[i]);
           pulls.push_back(c->stiffness * c->gap * c->direction[i]);
         }
@@ -230,6 +228,9 @@ void NewtonSolver::engage_candidates(const Vector& r, Vector& dx, Vector forward
       linear_solver_.forward_sparse(pulled, pulls).subtract_from(-1.0, forward_r);
       dx = -corrected_backward(forward_r);
     } else {
+      // Only in the first round: the solve below leaves L^-1 P r_model for the next ones.
+      Vector r_model = r;
+      for (std::size_t i = 0; i < pulled.size(); ++i) r_model[pulled[i]] += pulls[i];
       dx = direction(r_model, &forward_r);
     }
   }
