@@ -104,13 +104,20 @@ def test_viewer_killed_mid_run_leaves_the_run_whole(tmp_path, processes, browser
     browser.page.open(viewer.url)  # joins late: asks the server to describe itself
     wait_until(lambda: other.get("/api/model")[0] == 200, START_TIMEOUT_S,
                "the second viewer to have the model")
-    player = processes.sequence_player(port, long_schedule(tmp_path, steps * 0.004))
+    player = processes.sequence_player(port, long_schedule(tmp_path, steps * 0.004),
+                                       "--timeout-s", str(RUN_TIMEOUT_S))
     wait_until(lambda: browser.page.info()["step"] >= 1, RUN_TIMEOUT_S,
                "the page to show a step of the run")
-    status_before = browser.page.status_text()
-    viewer.kill()  # SIGKILL: no goodbye on the bus or to the page
-    print(f"viewer killed with the page at step {browser.page.info()['step']} of {steps}")
-    assert player.running(), "the run ended before the viewer was killed: lengthen it"
+    # The controller held while the viewer goes, so that it surely goes mid-run (the page once
+    # showed its first step only 545 steps before the end): the lock-step server waits for it.
+    player.pause()
+    try:
+        status_before = browser.page.status_text()
+        viewer.kill()  # SIGKILL: no goodbye on the bus or to the page
+        print(f"viewer killed with the page at step {browser.page.info()['step']} of {steps}")
+        assert player.running() and server.running(), "the run ended before the viewer went"
+    finally:
+        player.resume()
     assert player.wait() == 0, player.stderr()
     assert server.wait() == 0, server.stderr()
     assert_complete_run(tmp_path / "run.h5", steps)
