@@ -61,8 +61,36 @@ TONGUE_VECTOR_CLONES void forward(const Layout& f, float* __restrict y, float* _
   for (int v = 0; v < n; ++v) {
     const Supernode s = supernode(f, visit ? visit[v] : v);
     float* __restrict yk = y + s.first;
-    for (int c = 0; c < s.cols; ++c) {
-      const float v = yk[c] * f.inverse_diagonal[s.first + c];
+    const float* inverse = f.inverse_diagonal + s.first;
+    // A sparse y reaches the supernode where its path enters it: the columns before are zero and
+    // leave the rest as it is (on the tongue a column's path covers a third of L, and its entry
+    // is half way into the first supernode on average).
+    int first = 0;
+    while (first < s.cols && yk[first] == 0.0f) ++first;
+    if (first == s.cols) continue;
+    // The diagonal block's triangle four columns at a time: their 4 x 4 triangle, then one pass
+    // over the rows under it for all four (a quarter of the loads and stores of yk).
+    int c = first;
+    for (; c + 4 <= s.cols; c += 4) {
+      const float* __restrict c0 = s.block + static_cast<long>(c) * s.height;
+      const float* __restrict c1 = c0 + s.height;
+      const float* __restrict c2 = c1 + s.height;
+      const float* __restrict c3 = c2 + s.height;
+      const float v0 = yk[c] * inverse[c];
+      const float v1 = (yk[c + 1] - c0[c + 1] * v0) * inverse[c + 1];
+      const float v2 = (yk[c + 2] - c0[c + 2] * v0 - c1[c + 2] * v1) * inverse[c + 2];
+      const float v3 =
+          (yk[c + 3] - c0[c + 3] * v0 - c1[c + 3] * v1 - c2[c + 3] * v2) * inverse[c + 3];
+      yk[c] = v0;
+      yk[c + 1] = v1;
+      yk[c + 2] = v2;
+      yk[c + 3] = v3;
+#pragma omp simd
+      for (int i = c + 4; i < s.cols; ++i)
+        yk[i] -= c0[i] * v0 + c1[i] * v1 + c2[i] * v2 + c3[i] * v3;
+    }
+    for (; c < s.cols; ++c) {
+      const float v = yk[c] * inverse[c];
       yk[c] = v;
       const float* __restrict column = s.block + static_cast<long>(c) * s.height;
 #pragma omp simd
@@ -71,7 +99,7 @@ TONGUE_VECTOR_CLONES void forward(const Layout& f, float* __restrict y, float* _
     if (s.below == 0) continue;
     // work = L21 yk, four columns per pass over work.
     std::fill(work, work + s.below, 0.0f);
-    int c = 0;
+    c = first;
     for (; c + 4 <= s.cols; c += 4) {
       const float* __restrict c0 = s.l21 + static_cast<long>(c) * s.height;
       const float* __restrict c1 = c0 + s.height;
@@ -120,10 +148,30 @@ TONGUE_VECTOR_CLONES void backward(const Layout& f, float* __restrict y, float* 
       yk[c + 3] -= s3;
     }
     for (; c < s.cols; ++c) yk[c] -= dot(s.l21 + static_cast<long>(c) * s.height, work, s.below);
-    // The diagonal block's transpose, by columns: U = L11^T stored column-major, so that each
-    // solved entry updates the ones above it with one contiguous axpy, as in forward().
-    for (int c = s.cols - 1; c >= 0; --c) {
-      const float v = yk[c] * f.inverse_diagonal[s.first + c];
+    // The diagonal block's transpose, by columns: U = L11^T stored column-major, so that solved
+    // entries update the ones above them with contiguous loops, four columns at a time as in
+    // forward().
+    const float* inverse = f.inverse_diagonal + s.first;
+    c = s.cols - 1;
+    for (; c >= 3; c -= 4) {
+      const float* __restrict u0 = s.upper + static_cast<long>(c) * s.cols;
+      const float* __restrict u1 = u0 - s.cols;
+      const float* __restrict u2 = u1 - s.cols;
+      const float* __restrict u3 = u2 - s.cols;
+      const float v0 = yk[c] * inverse[c];
+      const float v1 = (yk[c - 1] - u0[c - 1] * v0) * inverse[c - 1];
+      const float v2 = (yk[c - 2] - u0[c - 2] * v0 - u1[c - 2] * v1) * inverse[c - 2];
+      const float v3 =
+          (yk[c - 3] - u0[c - 3] * v0 - u1[c - 3] * v1 - u2[c - 3] * v2) * inverse[c - 3];
+      yk[c] = v0;
+      yk[c - 1] = v1;
+      yk[c - 2] = v2;
+      yk[c - 3] = v3;
+#pragma omp simd
+      for (int i = 0; i < c - 3; ++i) yk[i] -= u0[i] * v0 + u1[i] * v1 + u2[i] * v2 + u3[i] * v3;
+    }
+    for (; c >= 0; --c) {
+      const float v = yk[c] * inverse[c];
       yk[c] = v;
       const float* __restrict column = s.upper + static_cast<long>(c) * s.cols;
 #pragma omp simd
