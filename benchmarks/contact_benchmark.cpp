@@ -42,10 +42,12 @@ void measure(const std::string& path, int repeats) {
   const double m_with = median(wall_with), m_without = median(wall_without);
   const double own_m_with = median(own_with), own_m_without = median(own_without);
   std::printf(
-      "%s: %d steps; stepping with obstacles %.4f s (%d iterations, %d factorizations), "
-      "without %.4f s (%d, %d): %.2fx; the repeats' own ratios %.2fx (%.2f-%.2f); medians of %d\n",
-      path.c_str(), a.steps, m_with, a.iterations, a.factorizations, m_without, b.iterations,
-      b.factorizations, m_with / m_without, median(paired),
+      "%s: %d steps; stepping with obstacles %.4f s (%d iterations, %d residuals, %d "
+      "factorizations), without %.4f s (%d, %d, %d): %.2fx; the repeats' own ratios %.2fx "
+      "(%.2f-%.2f); medians of %d\n",
+      path.c_str(), a.steps, m_with, a.iterations, a.residual_evaluations, a.factorizations,
+      m_without, b.iterations, b.residual_evaluations, b.factorizations, m_with / m_without,
+      median(paired),
       *std::min_element(paired.begin(), paired.end()),
       *std::max_element(paired.begin(), paired.end()), repeats);
   std::printf(
