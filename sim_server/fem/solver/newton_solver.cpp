@@ -114,7 +114,6 @@ void NewtonSolver::update_capacitance() {
   // with it, not every column solved for with the factor (on scenes/tongue_i.yaml about 60 in
   // use of up to 170).
   Eigen::MatrixXd C(k, k);
-  bool positive_d = true;
   for (int i = 0; i < k; ++i) {
     for (int j = 0; j <= i; ++j) {
       const int a = std::max(corrections_[i].column, corrections_[j].column);
@@ -124,18 +123,8 @@ void NewtonSolver::update_capacitance() {
       C(i, j) = C(j, i) = product;
     }
     C(i, i) += 1.0 / corrections_[i].stiffness;
-    positive_d = positive_d && corrections_[i].stiffness > 0.0;
   }
-  capacitance_.compute(C, positive_d);
-}
-
-void NewtonSolver::Capacitance::compute(const Eigen::MatrixXd& C, bool positive_d) {
-  definite = positive_d && llt.compute(C).info() == Eigen::Success;
-  if (!definite) lu.compute(C);
-}
-
-Eigen::VectorXd NewtonSolver::Capacitance::solve(const Eigen::VectorXd& w) const {
-  return definite ? Eigen::VectorXd(llt.solve(w)) : Eigen::VectorXd(lu.solve(w));
+  capacitance_.compute(C);
 }
 
 void NewtonSolver::split_terms() {

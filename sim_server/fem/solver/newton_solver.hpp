@@ -2,7 +2,6 @@
 // Newton-Raphson with a secant line search (Crisfield 1991, sec. 9.3; the scheme ANSYS and FEBio
 // use) and optional reuse of the factorized tangent (modified Newton), re-formed as soon as the
 // residual stops falling fast enough.
-#include <Eigen/Cholesky>
 #include <Eigen/LU>
 #include <memory>
 #include <string>
@@ -120,16 +119,8 @@ class NewtonSolver {
     int column;        // in columns_
     double stiffness;  // the change of k along the column's direction [N/m], non-zero
   };
-  std::vector<Correction> corrections_;  // in force: U, D and Z
-  // D^-1 + U^T Z = D^-1 + W^T W, by Cholesky when D > 0 (springs added or stiffened: then it is
-  // positive definite), else by LU with partial pivoting.
-  struct Capacitance {
-    Eigen::LLT<Eigen::MatrixXd> llt;
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu;
-    bool definite = false;
-    void compute(const Eigen::MatrixXd& C, bool positive_d);
-    Eigen::VectorXd solve(const Eigen::VectorXd& w) const;
-  } capacitance_;
+  std::vector<Correction> corrections_;               // in force: U, D and Z
+  Eigen::PartialPivLU<Eigen::MatrixXd> capacitance_;  // D^-1 + U^T Z
   std::vector<RankOneTerm> terms_;                    // scratch
   // The terms at the next iterate, when same_engaged_terms has found them already.
   std::vector<RankOneTerm> next_terms_;
