@@ -62,9 +62,9 @@ TONGUE_VECTOR_CLONES void forward(const Layout& f, float* __restrict y, float* _
     const Supernode s = supernode(f, visit ? visit[v] : v);
     float* __restrict yk = y + s.first;
     const float* inverse = f.inverse_diagonal + s.first;
-    // A sparse y reaches the supernode where its path enters it: the columns before are zero and
-    // leave the rest as it is (on the tongue a column's path covers a third of L, and its entry
-    // is half way into the first supernode on average).
+    // A sparse y enters the first supernode of its path part way: the columns before its first
+    // nonzero leave the rest as it is (on the tongue a correction column's path covers a third
+    // of L; skipping them took a seventh off the substitutions' samples in the contact scenes).
     int first = 0;
     while (first < s.cols && yk[first] == 0.0f) ++first;
     if (first == s.cols) continue;
