@@ -47,8 +47,7 @@ void measure(const std::string& path, int repeats) {
       "(%.2f-%.2f); medians of %d\n",
       path.c_str(), a.steps, m_with, a.iterations, a.residual_evaluations, a.factorizations,
       m_without, b.iterations, b.residual_evaluations, b.factorizations, m_with / m_without,
-      median(paired),
-      *std::min_element(paired.begin(), paired.end()),
+      median(paired), *std::min_element(paired.begin(), paired.end()),
       *std::max_element(paired.begin(), paired.end()), repeats);
   std::printf(
       "  the integrator's steps alone (sim_batch's \"stepping\"): %.4f s against %.4f s: %.2fx\n",
