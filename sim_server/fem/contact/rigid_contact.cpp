@@ -68,13 +68,14 @@ void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
     candidate = {x, std::numeric_limits<double>::infinity(), false};
     for (int o = 0; o < num_obstacles; ++o) {
       Probe& probe = probes_[pair(i, o)];
-      // What the probe, kept or asked again at x, leaves the candidate.
-      const auto hold = [&] {
-        candidate.reach = std::min(candidate.reach, probe.reach - (x - probe.at).norm());
+      // What the probe, kept (x `moved` from where it was asked) or asked again at x, leaves the
+      // candidate.
+      const auto hold = [&](double moved) {
+        candidate.reach = std::min(candidate.reach, probe.reach - moved);
         candidate.in_front = candidate.in_front || probe.in_front;
       };
-      if ((x - probe.at).norm() < probe.reach) {
-        hold();
+      if (const double moved = (x - probe.at).norm(); moved < probe.reach) {
+        hold(moved);
         continue;
       }
       const Obstacle& obstacle = *obstacles_[o];
@@ -86,7 +87,7 @@ void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
       const double box = obstacle.box_distance(x);
       probe.reach = obstacle.closed() ? box - shift : box - std::max(depth, shift);
       if (probe.reach > 0.0) {
-        hold();
+        hold(0.0);
         continue;
       }
       const SurfacePoint s = closest(obstacle, probe, x);
@@ -110,7 +111,7 @@ void RigidContact::for_each_contact(const Vector& u, Visit&& visit) const {
         }
       }
       if (probe.reach < 0.0 && probe.near.empty()) list_near(obstacle, probe, x, s);
-      hold();
+      hold(0.0);
     }
   }
   found_at_.swap(at);
