@@ -47,6 +47,10 @@ struct DynamicSettings {
   bool lumped_mass = false;
   int max_cuts = 4;  // a step may be split into at most 2^max_cuts substeps
   NewtonSettings newton;
+  // The nodes a load has held by a spring (in contact) for the last two states start a step
+  // from their last step's displacement carried on, the others from their velocity
+  // (NewmarkIntegrator::predictor). false: every node from its velocity.
+  bool held_nodes_follow_increment = true;
 };
 
 class NewmarkIntegrator : public TimeIntegrator {
@@ -97,6 +101,10 @@ class NewmarkIntegrator : public TimeIntegrator {
   const Vector& velocity() const override { return v_; }
   const Vector& acceleration() const override { return a_; }
   double time() const override { return t_; }
+  // Where Newton starts the next step of dt (the free dofs): u_n + dt v_n, but for the unknowns
+  // of a node held by a spring in the last two states u_n + (u_n - u_n-1), when the last step
+  // was one of dt (DynamicSettings::held_nodes_follow_increment).
+  Vector predictor(double dt) const;
   const DynamicSettings& settings() const { return settings_; }
   NewtonSolver& newton() { return newton_; }
 
@@ -107,6 +115,8 @@ class NewmarkIntegrator : public TimeIntegrator {
   void form_damping(const Vector& at);
   // c0 M + c1 C for this dt, formed again only when dt changes.
   const SymmetricMatrix& dynamic_matrix(double dt);
+  // Marks the free unknowns of the nodes the loads hold by a spring at u_ (empty: none).
+  std::vector<char> held_unknowns() const;
 
   MechanicalSystem& system_;
   DynamicSettings settings_;
@@ -122,6 +132,11 @@ class NewmarkIntegrator : public TimeIntegrator {
   Vector u_, v_, a_;  // full vectors
   double t_ = 0.0;
   double last_dt_ = 0.0;
+  // The state before the last accepted step and that step's length (0: none since the last
+  // initialize() or hold()); the unknowns held by a spring in that state and in u_.
+  Vector previous_u_;
+  double previous_dt_ = 0.0;
+  std::vector<char> held_before_, held_;
   bool initialized_ = false;
   bool in_equilibrium_ = false;  // the last step() converged without a Newton iteration
 };
