@@ -410,9 +410,9 @@ TEST(RigidContact, DroppedBlockComesToRestOnThePlane) {
 
 // The nodes in contact start each step from their last step's displacement carried on, not from
 // their velocity (NewmarkIntegrator's predictor): where Newton starts must not change where it
-// ends. The block dropped and come to rest, stepped both ways, passes through the same states,
-// to 1e-12 m: Newton's residual tolerance (1e-12 N) on a stiffness of at least eps ~ 1e4 N/m
-// leaves 1e-16 m per step, and the 400 steps measured 3e-14 m apart.
+// ends. The block's drop and rest, stepped both ways, pass through the same states to 1e-12 m:
+// Newton's residual tolerance (1e-12 N) on a stiffness of at least eps ~ 1e4 N/m leaves 1e-16 m
+// per step, and the 400 steps measured 3e-14 m apart.
 TEST(RigidContact, HeldNodesCarryingOnTheirLastStepReachTheSameStates) {
   DroppedBlock following, velocity;
   DynamicSettings settings = damped({0.390625, 0.75, 0.0});
