@@ -11,6 +11,11 @@
 namespace tongue::reduced {
 
 ElementSample sample_elements(const Eigen::MatrixXd& g, int k, double tolerance) {
+  return sample_elements(g, k, tolerance, g.rowwise().sum());
+}
+
+ElementSample sample_elements(const Eigen::MatrixXd& g, int k, double tolerance,
+                              const fem::Vector& goal) {
   if (k <= 0 || g.rows() == 0 || g.rows() % k != 0)
     throw std::invalid_argument("element sampling: " + std::to_string(g.rows()) +
                                 " rows are not a whole number of snapshots of " +
@@ -18,25 +23,32 @@ ElementSample sample_elements(const Eigen::MatrixXd& g, int k, double tolerance)
   if (g.cols() == 0) throw std::invalid_argument("element sampling: no element");
   if (!(tolerance > 0.0 && tolerance < 1.0))
     throw std::invalid_argument("element sampling: the tolerance must lie in (0, 1)");
+  if (goal.size() != g.rows())
+    throw std::invalid_argument("element sampling: the target has " + std::to_string(goal.size()) +
+                                " values for " + std::to_string(g.rows()) + " rows");
   const Eigen::Index E = g.cols(), S = g.rows() / k;
-  Eigen::MatrixXd scaled(g.rows(), E);
+  // [G t], each snapshot's rows scaled by the norm of its target.
+  Eigen::MatrixXd scaled(g.rows(), E + 1);
   for (Eigen::Index s = 0; s < S; ++s) {
-    const double norm = g.middleRows(s * k, k).rowwise().sum().norm();
+    const double norm = goal.segment(s * k, k).norm();
     // A snapshot without force has nothing to reproduce and drops out.
-    scaled.middleRows(s * k, k) = (norm > 0.0 ? 1.0 / norm : 0.0) * g.middleRows(s * k, k);
+    const double scale = norm > 0.0 ? 1.0 / norm : 0.0;
+    scaled.block(s * k, 0, k, E) = scale * g.middleRows(s * k, k);
+    scaled.block(s * k, E, k, 1) = scale * goal.segment(s * k, k);
   }
-  // The target G 1 lies in G's range, so || G w - G 1 || = || R (w - 1) || with G = Q R: the path
-  // is found on R's at most E rows instead of G's S k (the correlations G^T r = R^T Q^T r and the
-  // columns' norms are the same), with the same result.
+  // With [G t] = Q R, || G w - t || = || R_G w - R_t ||: the path is found on R's at most E + 1
+  // rows instead of G's S k (the correlations G^T r = R^T Q^T r and the columns' norms are the
+  // same), with the same result.
   Eigen::MatrixXd r;
-  if (scaled.rows() > E) {
+  if (scaled.rows() > E + 1) {
     const Eigen::HouseholderQR<Eigen::MatrixXd> qr(scaled);
-    r = qr.matrixQR().topRows(E).triangularView<Eigen::Upper>();
+    r = qr.matrixQR().topRows(E + 1).triangularView<Eigen::Upper>();
   } else {
     r = scaled;
   }
   const Eigen::Index rows = r.rows();
-  const Eigen::VectorXd target = r.rowwise().sum();
+  const Eigen::VectorXd target = r.col(E);
+  r.conservativeResize(Eigen::NoChange, E);
   const double target_norm = target.norm();
   if (!(target_norm > 0.0))
     throw std::invalid_argument("element sampling: every snapshot's force is 0");

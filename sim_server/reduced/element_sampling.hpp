@@ -27,4 +27,11 @@ struct ElementSample {
 // outside (0, 1).
 ElementSample sample_elements(const Eigen::MatrixXd& g, int k, double tolerance);
 
+// The same with another target than G 1: the columns of g weighed to reproduce `target` (S k
+// values, each snapshot's block scaled by its own norm), e.g. the whole mesh's reduced forces by
+// candidates that are not its elements. Throws std::invalid_argument also for a target of
+// another size or without force.
+ElementSample sample_elements(const Eigen::MatrixXd& g, int k, double tolerance,
+                              const fem::Vector& target);
+
 }  // namespace tongue::reduced

@@ -14,8 +14,10 @@
 namespace tongue::reduced {
 namespace {
 
-// The misfit over the snapshots, each scaled by its own mesh force, computed here from g.
-double relative_misfit(const Eigen::MatrixXd& g, int k, const ElementSample& sample) {
+// The misfit over the snapshots, each scaled by its own target (by default its mesh force),
+// computed here from g.
+double relative_misfit(const Eigen::MatrixXd& g, int k, const ElementSample& sample,
+                       const fem::Vector* target = nullptr) {
   fem::Vector w = fem::Vector::Zero(g.cols());
   for (std::size_t j = 0; j < sample.elements.size(); ++j)
     w[sample.elements[j]] = sample.weights[static_cast<Eigen::Index>(j)];
@@ -23,15 +25,20 @@ double relative_misfit(const Eigen::MatrixXd& g, int k, const ElementSample& sam
   const Eigen::Index S = g.rows() / k;
   for (Eigen::Index s = 0; s < S; ++s) {
     const auto block = g.middleRows(s * k, k);
-    const fem::Vector whole = block.rowwise().sum();
+    const fem::Vector whole =
+        target ? fem::Vector(target->segment(s * k, k)) : fem::Vector(block.rowwise().sum());
     sum += (block * w - whole).squaredNorm() / whole.squaredNorm();
   }
   return std::sqrt(sum / static_cast<double>(S));
 }
 
-TEST(ElementSampling, AFewElementsReproduceTheMeshsReducedForces) {
-  // A cantilever-like box bent and twisted by smooth fields of random amplitudes: 40 snapshots,
-  // their 3 leading modes.
+// A cantilever-like box bent and twisted by smooth fields of random amplitudes: 40 snapshots,
+// their 3 leading modes, and its elements' reduced forces over them.
+struct BentBox {
+  Eigen::MatrixXd g;
+  int k = 0;
+};
+BentBox bent_box() {
   const fem::Mesh mesh = fem::make_box(fem::Vec3::Zero(), {0.06, 0.02, 0.02}, 8, 3, 3);
   const fem::SolidModel solid(mesh, fem::make_material("mooney_rivlin5", {}),
                               fem::Formulation::mean_dilatation, 1000.0, {});
@@ -49,10 +56,17 @@ TEST(ElementSampling, AFewElementsReproduceTheMeshsReducedForces) {
       Eigen::DiagonalMatrix<double, 3>(4e-3, 3e-3, 0.3) * Eigen::MatrixXd::Random(3, 40);
   const Eigen::MatrixXd snapshots = fields * amplitudes;
   const PodBasis pod = pod_basis(snapshots, 0.999999);
-  const int k = static_cast<int>(pod.modes.cols());
+  BentBox box;
+  box.k = static_cast<int>(pod.modes.cols());
+  box.g = element_reduced_forces(solid, fem::Vector::Zero(n), pod.modes, snapshots);
+  return box;
+}
+
+TEST(ElementSampling, AFewElementsReproduceTheMeshsReducedForces) {
+  const BentBox box = bent_box();
+  const Eigen::MatrixXd& g = box.g;
+  const int k = box.k;
   ASSERT_EQ(k, 3);
-  const Eigen::MatrixXd g =
-      element_reduced_forces(solid, fem::Vector::Zero(n), pod.modes, snapshots);
 
   for (const double tolerance : {0.05, 0.01}) {
     SCOPED_TRACE(tolerance);
@@ -76,6 +90,32 @@ TEST(ElementSampling, AFewElementsReproduceTheMeshsReducedForces) {
             sample_elements(g, k, 0.01).elements.size());
 }
 
+TEST(ElementSampling, ReproducesAGivenTargetWithOtherCandidates) {
+  // Candidates that are not the mesh's elements: each element's reduced forces times a factor
+  // of its own in [0.5, 1.5], weighed to reproduce the whole mesh's (which the candidates do
+  // exactly with weights 1 / factor).
+  const BentBox box = bent_box();
+  const fem::Vector whole = box.g.rowwise().sum();
+  std::srand(11);
+  const fem::Vector factors = 1.0 + 0.5 * fem::Vector::Random(box.g.cols()).array();
+  const Eigen::MatrixXd candidates = box.g * factors.asDiagonal();
+  for (const double tolerance : {0.05, 0.01}) {
+    SCOPED_TRACE(tolerance);
+    const ElementSample sample = sample_elements(candidates, box.k, tolerance, whole);
+    ASSERT_TRUE(sample.within_tolerance);
+    EXPECT_LT(sample.elements.size(), 36u);
+    EXPECT_GT(sample.weights.minCoeff(), 0.0);
+    const double misfit = relative_misfit(candidates, box.k, sample, &whole);
+    EXPECT_NEAR(sample.relative_error, misfit, 1e-9);
+    EXPECT_LE(misfit, tolerance);
+  }
+  // The mesh's own elements toward G 1 given are the default sampling, to round-off.
+  const ElementSample given = sample_elements(box.g, box.k, 0.01, whole);
+  const ElementSample implied = sample_elements(box.g, box.k, 0.01);
+  EXPECT_EQ(given.elements, implied.elements);
+  EXPECT_NEAR(given.relative_error, implied.relative_error, 1e-12);
+}
+
 TEST(ElementSampling, RefusesWhatIsNoSamplingProblem) {
   const Eigen::MatrixXd g = Eigen::MatrixXd::Ones(6, 4);
   EXPECT_THROW(sample_elements(g, 4, 0.01), std::invalid_argument);  // 6 rows, 4 modes
@@ -83,6 +123,9 @@ TEST(ElementSampling, RefusesWhatIsNoSamplingProblem) {
   EXPECT_THROW(sample_elements(g, 3, 1.0), std::invalid_argument);
   EXPECT_THROW(sample_elements(Eigen::MatrixXd(6, 0), 3, 0.01), std::invalid_argument);
   EXPECT_THROW(sample_elements(Eigen::MatrixXd::Zero(6, 4), 3, 0.01), std::invalid_argument);
+  // A target of another size, or without force.
+  EXPECT_THROW(sample_elements(g, 3, 0.01, fem::Vector::Ones(5)), std::invalid_argument);
+  EXPECT_THROW(sample_elements(g, 3, 0.01, fem::Vector::Zero(6)), std::invalid_argument);
 }
 
 }  // namespace
