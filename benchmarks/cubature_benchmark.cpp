@@ -8,7 +8,9 @@
 //    integration of subspace deformations"), about an eighth of an element's work, each point
 //    weighed to reproduce the whole mesh's forces of the first kind.
 // Prints, for each tolerance, the sampled count and misfit, and the one-point candidates' misfit
-// with every weight 1 (how far the one-point mesh is from the full one).
+// with every weight 1 (how far the one-point mesh is from the full one). Then the same for one
+// point per element plus an affine model, in the reduced coordinates, of what those points leave
+// out of the whole mesh's force, the sample fitting the rest.
 //
 // Usage: cubature_benchmark SCENE BASIS SNAPSHOTS [--snapshots N]
 //   (BASIS and SNAPSHOTS from build_reduced_model SCENE --output BASIS --snapshots SNAPSHOTS)
